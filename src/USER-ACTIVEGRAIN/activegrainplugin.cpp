@@ -1,0 +1,28 @@
+// Plugin entry point: registers every ActiveGrain style with the host LAMMPS.
+#include "lammpsplugin.h"
+#include "version.h"
+
+using namespace LAMMPS_NS;
+
+namespace {
+template <class Style> Pair *create_pair(LAMMPS *lmp) { return new Style(lmp); }
+template <class Style> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
+{
+  return new Style(lmp, narg, arg);
+}
+template <class Style> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
+{
+  return new Style(lmp, narg, arg);
+}
+}    // namespace
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  auto register_plugin = (lammpsplugin_regfunc) regfunc;
+  lammpsplugin_t plugin;
+  plugin.version = LAMMPS_VERSION;
+  plugin.author = "ActiveGrain developers";
+  plugin.handle = handle;
+  (void) register_plugin;
+  (void) lmp;
+}

@@ -1,0 +1,42 @@
+// The state of one rigid body as the contact core sees it. A bead, a rod, or a wall.
+#pragma once
+
+#include "ag_math.h"
+
+namespace ActiveGrain {
+
+struct RigidBodyState {
+  double inv_mass = 0.0;    // 0: infinite mass (a plate or wall moving as prescribed)
+  Mat3 inv_inertia;         // world-frame inverse inertia tensor; 0 for a wall
+  Vec3 com;                 // centre of mass
+  Vec3 v;                   // centre-of-mass velocity
+  Vec3 omega;               // angular velocity
+
+  static RigidBodyState wall(const Vec3 &velocity)
+  {
+    RigidBodyState w;
+    w.v = velocity;
+    return w;
+  }
+  // A solid sphere of mass m and radius r centred at x.
+  static RigidBodyState sphere(double m, double r, const Vec3 &x, const Vec3 &v, const Vec3 &omega)
+  {
+    RigidBodyState s;
+    s.inv_mass = 1.0 / m;
+    s.inv_inertia = Mat3::identity(1.0 / (0.4 * m * r * r));
+    s.com = x;
+    s.v = v;
+    s.omega = omega;
+    return s;
+  }
+
+  Vec3 velocity_at(const Vec3 &p) const { return v + cross(omega, p - com); }
+  // Apply impulse J at point p.
+  void apply_impulse(const Vec3 &J, const Vec3 &p)
+  {
+    v += J * inv_mass;
+    omega += inv_inertia * cross(p - com, J);
+  }
+};
+
+}    // namespace ActiveGrain

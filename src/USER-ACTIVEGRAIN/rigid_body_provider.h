@@ -1,0 +1,19 @@
+// How contact styles learn that an atom is a constituent of a rigid body (a rod), and that
+// body's mass, centre of mass, inertia and velocity. Implemented by fix rigid/rod; found by
+// pair gran/impulse and the wall fixes through Modify's fix list.
+#pragma once
+
+#include "ag_rigid_body.h"
+#include "lmptype.h"
+
+namespace LAMMPS_NS {
+
+class RigidBodyProvider {
+ public:
+  virtual ~RigidBodyProvider() = default;
+  // For atom i (owned or ghost): false if it belongs to no body of this provider; otherwise
+  // the body's current state and a body ID that is the same on every rank and every atom of it.
+  virtual bool body_of_atom(int i, ActiveGrain::RigidBodyState &body, tagint &body_id) const = 0;
+};
+
+}    // namespace LAMMPS_NS
