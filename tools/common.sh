@@ -48,7 +48,7 @@ ensure_system_packages() {
 fetch_lammps_tarball() {
   local dl="$AG_CACHE/downloads"; mkdir -p "$dl"
   if [ -f "$dl/$TARBALL" ] && echo "$SHA256  $dl/$TARBALL" | sha256sum -c --status; then return 0; fi
-  local sources=/etc/apt/sources.list.d/debian.sources
+  local sources=${ACTIVEGRAIN_APT_SOURCES:-/etc/apt/sources.list.d/debian.sources}
   [ -f "$sources" ] || die "no $sources to derive a Debian source entry from; download LAMMPS yourself and pass -DLAMMPS_SOURCE_DIR / LAMMPS_SOURCE_DIR"
   local apt="$AG_CACHE/apt-$SUITE"; mkdir -p "$apt/parts" "$apt/lists/partial"
   # Keep the first stanza's URIs and keyring; switch to source packages of $SUITE.

@@ -2,6 +2,10 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "compute.h"
+#include "fix.h"
+#include "pair.h"
+
 using namespace LAMMPS_NS;
 
 namespace {
