@@ -47,3 +47,39 @@ std::vector<double> disc_chain_area_shares(const std::vector<double> &centres,
 }
 
 }    // namespace ActiveGrain
+
+namespace ActiveGrain {
+
+RodChain project_rod_chain(const std::vector<Vec3> &centres, const std::vector<double> &radii)
+{
+  RodChain rod;
+  const std::size_t n = centres.size();
+  if (n == 0) return rod;
+  std::size_t tail = 0, nose = 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if (radii[k] > radii[tail]) tail = k;
+    if (radii[k] < radii[nose]) nose = k;
+  }
+  const Vec3 span = centres[nose] - centres[tail];
+  if (radii[tail] > radii[nose] && norm2(span) > 0) rod.axis = span / norm(span);
+
+  // Positions along the rod's projection on the plane: any in-plane direction through the
+  // chain works, the widest-to-farthest sphere gives a well-defined one even without taper.
+  std::size_t far = 0;
+  double far2 = -1;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3 d = centres[k] - centres[tail];
+    const double d2 = d.x * d.x + d.y * d.y;
+    if (d2 > far2) { far2 = d2; far = k; }
+  }
+  Vec3 along = centres[far] - centres[tail];
+  along.z = 0;
+  const double len = norm(along);
+  std::vector<double> s(n, 0.0);
+  if (len > 0)
+    for (std::size_t k = 0; k < n; ++k) s[k] = dot(centres[k] - centres[tail], along) / len;
+  rod.shares = disc_chain_area_shares(s, radii);
+  return rod;
+}
+
+}    // namespace ActiveGrain

@@ -3,6 +3,8 @@
 // binning (chunks) count each rod's true shape once.
 #pragma once
 
+#include "ag_math.h"
+
 #include <vector>
 
 namespace ActiveGrain {
@@ -12,5 +14,16 @@ namespace ActiveGrain {
 // inside its power-diagram cell. The shares add up to the union's area exactly.
 std::vector<double> disc_chain_area_shares(const std::vector<double> &centres,
                                            const std::vector<double> &radii);
+
+// A rod seen through its constituent spheres (centres on the rod's axis, tapered radii).
+struct RodChain {
+  Vec3 axis;                    // unit polar axis p, from the widest sphere (tail) to the narrowest (nose)
+  std::vector<double> shares;   // each sphere's share of the rod's projected area in the xy plane
+};
+
+// The polar axis and xy projected-area shares of a rod from its spheres' centres and radii.
+// The centres must be unwrapped (one periodic image); at least two spheres of different radius
+// are needed for the axis to be defined (otherwise axis is zero).
+RodChain project_rod_chain(const std::vector<Vec3> &centres, const std::vector<double> &radii);
 
 }    // namespace ActiveGrain

@@ -100,3 +100,51 @@ TEST(ProjectedArea, RandomChainsAddUpToTheUnion)
     EXPECT_NEAR(total(s), union_area_numeric(c, r), 1e-5) << "trial " << trial;
   }
 }
+
+TEST(RodChain, AxisPointsFromTailToNoseWhateverTheOrder)
+{
+  using ActiveGrain::Vec3;
+  const Vec3 p(std::cos(0.7), std::sin(0.7), 0.0);
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  for (int k : {3, 0, 4, 1, 2}) {   // shuffled constituents
+    x.push_back(Vec3(1, 2, 0.5) + p * (0.5 * k));
+    r.push_back(0.55 - 0.05 * k);
+  }
+  auto rod = ActiveGrain::project_rod_chain(x, r);
+  EXPECT_NEAR(rod.axis.x, p.x, 1e-12);
+  EXPECT_NEAR(rod.axis.y, p.y, 1e-12);
+  EXPECT_NEAR(rod.axis.z, 0.0, 1e-12);
+  // Same shares as the chain laid out along a line.
+  std::vector<double> s;
+  for (int k : {3, 0, 4, 1, 2}) s.push_back(0.5 * k);
+  auto expected = disc_chain_area_shares(s, r);
+  for (std::size_t k = 0; k < r.size(); ++k) EXPECT_NEAR(rod.shares[k], expected[k], 1e-12);
+}
+
+TEST(RodChain, TiltShortensTheProjection)
+{
+  using ActiveGrain::Vec3;
+  std::vector<Vec3> flat, tilted;
+  std::vector<double> r = {0.5, 0.45, 0.4};
+  const double tilt = 0.3;
+  for (int k = 0; k < 3; ++k) {
+    flat.emplace_back(0.6 * k, 0, 0);
+    tilted.emplace_back(0.6 * k * std::cos(tilt), 0, 0.6 * k * std::sin(tilt));
+  }
+  const double a_flat = total(ActiveGrain::project_rod_chain(flat, r).shares);
+  const double a_tilt = total(ActiveGrain::project_rod_chain(tilted, r).shares);
+  std::vector<double> s;
+  for (int k = 0; k < 3; ++k) s.push_back(0.6 * k * std::cos(tilt));
+  EXPECT_LT(a_tilt, a_flat);
+  EXPECT_NEAR(a_tilt, total(disc_chain_area_shares(s, r)), 1e-12);
+  EXPECT_NEAR(ActiveGrain::project_rod_chain(tilted, r).axis.z, std::sin(tilt), 1e-12);
+}
+
+TEST(RodChain, UntaperedChainHasNoPolarAxis)
+{
+  using ActiveGrain::Vec3;
+  auto rod = ActiveGrain::project_rod_chain({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.5});
+  EXPECT_EQ(norm2(rod.axis), 0.0);
+  EXPECT_GT(total(rod.shares), M_PI * 0.25);
+}
