@@ -6,6 +6,9 @@
 #include "fix.h"
 #include "pair.h"
 
+#include "compute_areafrac_chunk.h"
+#include "compute_polar_rod.h"
+
 using namespace LAMMPS_NS;
 
 namespace {
@@ -27,6 +30,16 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "ActiveGrain developers";
   plugin.handle = handle;
-  (void) register_plugin;
-  (void) lmp;
+
+  plugin.style = "compute";
+  plugin.name = "polar/rod";
+  plugin.info = "Polar and nematic order of rigid rods, and a per-rod table";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_compute<ComputePolarRod>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "compute";
+  plugin.name = "areafrac/chunk";
+  plugin.info = "Bead and rod area fractions and rod polarization per chunk";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_compute<ComputeAreafracChunk>;
+  register_plugin(&plugin, lmp);
 }

@@ -7,6 +7,7 @@
 #include "library.h"
 #include "utils.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
 

@@ -1,0 +1,33 @@
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(areafrac/chunk,ComputeAreafracChunk);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_AREAFRAC_CHUNK_H
+#define LMP_COMPUTE_AREAFRAC_CHUNK_H
+
+#include "compute_chunk.h"
+#include "local_rods.h"
+
+namespace LAMMPS_NS {
+
+class ComputeAreafracChunk : public ComputeChunk {
+ public:
+  ComputeAreafracChunk(class LAMMPS *, int, char **);
+  ~ComputeAreafracChunk() override;
+  void init() override;
+  void compute_array() override;
+  double memory_usage() override;
+
+ private:
+  LocalRods rods;
+  double **sums = nullptr, **totals = nullptr;    // this rank's and all ranks' per-chunk sums
+
+  void allocate() override;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

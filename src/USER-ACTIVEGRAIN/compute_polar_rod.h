@@ -1,0 +1,34 @@
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(polar/rod,ComputePolarRod);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_POLAR_ROD_H
+#define LMP_COMPUTE_POLAR_ROD_H
+
+#include "compute.h"
+#include "local_rods.h"
+
+namespace LAMMPS_NS {
+
+class ComputePolarRod : public Compute {
+ public:
+  ComputePolarRod(class LAMMPS *, int, char **);
+  ~ComputePolarRod() override;
+  void init() override;
+  double compute_scalar() override;
+  void compute_vector() override;
+  void compute_local() override;
+  double memory_usage() override;
+
+ private:
+  LocalRods rods;
+  double **rod_table = nullptr;    // per-rod local rows
+  int max_rows = 0;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
