@@ -65,11 +65,7 @@ void LocalRods::update(int groupbit)
     if (!provider_->body_of_atom(j, body, body_id)) continue;
     auto found = index_of_body.find(body_id);
     if (found == index_of_body.end()) continue;
-    const int ref = reference[found->second];
-    double d[3] = {x[j][0] - x[ref][0], x[j][1] - x[ref][1], x[j][2] - x[ref][2]};
-    double image[3] = {d[0], d[1], d[2]};
-    domain->minimum_image(image);
-    if (d[0] != image[0] || d[1] != image[1] || d[2] != image[2]) continue;
+    if (domain->closest_image(reference[found->second], j) != j) continue;
     members[found->second].push_back(j);
   }
 
