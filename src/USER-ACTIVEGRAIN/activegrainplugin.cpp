@@ -2,6 +2,12 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_rigid_rod.h"
+#include "rod_template.h"
+
+#include "compute.h"
+#include "pair.h"
+
 using namespace LAMMPS_NS;
 
 namespace {
@@ -10,6 +16,7 @@ template <class Style> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
 {
   return new Style(lmp, narg, arg);
 }
+template <class Style> Command *create_command(LAMMPS *lmp) { return new Style(lmp); }
 template <class Style> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
 {
   return new Style(lmp, narg, arg);
@@ -23,6 +30,16 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "ActiveGrain developers";
   plugin.handle = handle;
-  (void) register_plugin;
-  (void) lmp;
+
+  plugin.style = "fix";
+  plugin.name = "rigid/rod";
+  plugin.info = "Tapered polar rods as rigid bodies with true inertia and polar axis";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixRigidRod>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "command";
+  plugin.name = "rod_template";
+  plugin.info = "Molecule template of a tapered rod from its physical parameters";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &create_command<RodTemplate>;
+  register_plugin(&plugin, lmp);
 }
