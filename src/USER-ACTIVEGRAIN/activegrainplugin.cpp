@@ -2,15 +2,15 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "fix_wall_impulse.h"
+#include "fix_wall_impulse_region.h"
+#include "pair_gran_impulse.h"
+
 using namespace LAMMPS_NS;
 
 namespace {
 template <class Style> Pair *create_pair(LAMMPS *lmp) { return new Style(lmp); }
 template <class Style> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
-{
-  return new Style(lmp, narg, arg);
-}
-template <class Style> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
 {
   return new Style(lmp, narg, arg);
 }
@@ -23,6 +23,22 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "ActiveGrain developers";
   plugin.handle = handle;
-  (void) register_plugin;
-  (void) lmp;
+
+  plugin.style = "pair";
+  plugin.name = "gran/impulse";
+  plugin.info = "Frictional restitutive impulse contacts";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &create_pair<PairGranImpulse>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/impulse";
+  plugin.info = "Vibrating base plate and lid with impulse contacts";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixWallImpulse>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/impulse/region";
+  plugin.info = "Region side walls with impulse contacts";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixWallImpulseRegion>;
+  register_plugin(&plugin, lmp);
 }
