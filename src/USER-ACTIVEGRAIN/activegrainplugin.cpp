@@ -3,10 +3,10 @@
 #include "version.h"
 
 #include "fix_rigid_rod.h"
+#include "fix_wall_impulse.h"
+#include "fix_wall_impulse_region.h"
+#include "pair_gran_impulse.h"
 #include "rod_template.h"
-
-#include "compute.h"
-#include "pair.h"
 
 using namespace LAMMPS_NS;
 
@@ -17,10 +17,6 @@ template <class Style> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
   return new Style(lmp, narg, arg);
 }
 template <class Style> Command *create_command(LAMMPS *lmp) { return new Style(lmp); }
-template <class Style> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
-{
-  return new Style(lmp, narg, arg);
-}
 }    // namespace
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -30,6 +26,24 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = LAMMPS_VERSION;
   plugin.author = "ActiveGrain developers";
   plugin.handle = handle;
+
+  plugin.style = "pair";
+  plugin.name = "gran/impulse";
+  plugin.info = "Frictional restitutive impulse contacts";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &create_pair<PairGranImpulse>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/impulse";
+  plugin.info = "Vibrating base plate and lid with impulse contacts";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixWallImpulse>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/impulse/region";
+  plugin.info = "Region side walls with impulse contacts";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixWallImpulseRegion>;
+  register_plugin(&plugin, lmp);
 
   plugin.style = "fix";
   plugin.name = "rigid/rod";
