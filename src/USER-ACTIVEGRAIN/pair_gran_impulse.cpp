@@ -13,6 +13,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
+#include "fix_store_atom.h"
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
@@ -31,10 +32,13 @@ using ActiveGrain::RigidBodyState;
 using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Pair gran/impulse";
+static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
+static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
-    maxrad(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr), stats{0, 0, 0, 0}
+    maxrad(nullptr), pending(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr),
+    stats{0, 0, 0, 0}
 {
   single_enable = 0;
   restartinfo = 1;
@@ -47,6 +51,7 @@ PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
 
 PairGranImpulse::~PairGranImpulse()
 {
+  if (pending) modify->delete_fix(PENDING_ID);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -125,6 +130,11 @@ void PairGranImpulse::init_style()
     error->all(FLERR, "{} requires ghost atoms to store velocity: use comm_modify vel yes", STYLE);
 
   neighbor->add_request(this, NeighConst::REQ_SIZE);
+
+  pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
+  if (!pending)
+    pending = dynamic_cast<FixStoreAtom *>(
+        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, PENDING_STEP + 1)));
 
   providers.clear();
   walls.clear();
@@ -274,9 +284,7 @@ void PairGranImpulse::gather_wall_contacts()
 
 void PairGranImpulse::distribute_impulses()
 {
-  // In setup() no final_integrate follows the force computation, so the first
-  // initial_integrate must carry the whole impulse.
-  const double to_force = (update->setupflag ? 2.0 : 1.0) / update->dt;
+  const double to_force = 1.0 / update->dt;
   double **x = atom->x;
   auto push = [&](int i, const Vec3 &F, const Vec3 &point) {
     const Vec3 torque = cross(point - Vec3(x[i]), F);
@@ -295,15 +303,49 @@ void PairGranImpulse::distribute_impulses()
   }
 }
 
+// Add the contact forces to owned atoms; remember them for a run that continues from here.
+void PairGranImpulse::apply_contact_forces(bool store)
+{
+  double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
+  const double step = (double) update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++) {
+    for (int k = 0; k < 3; k++) {
+      f[i][k] += fcontact[i][k];
+      torque[i][k] += tcontact[i][k];
+    }
+    if (!store) continue;
+    for (int k = 0; k < 3; k++) {
+      saved[i][k] = fcontact[i][k];
+      saved[i][3 + k] = tcontact[i][k];
+    }
+    saved[i][PENDING_STEP] = step;
+  }
+}
+
 void PairGranImpulse::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   grow_buffers();
+
+  if (update->setupflag) {
+    // Contacts are solved in the steps. At setup only the force of the step this run
+    // continues from (if any) comes back, so that its initial_integrate completes the impulse.
+    double **saved = pending->astore;
+    const double step = (double) update->ntimestep;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (saved[i][PENDING_STEP] == step)
+        for (int k = 0; k < 3; k++) {
+          fcontact[i][k] = saved[i][k];
+          tcontact[i][k] = saved[i][3 + k];
+        }
+    apply_contact_forces(false);
+    return;
+  }
+
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
   stats[2] = 0.0;
-
   gather_pair_contacts();
   gather_wall_contacts();
   const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
@@ -311,14 +353,8 @@ void PairGranImpulse::compute(int eflag, int vflag)
   stats[1] = result.sweeps;
   stats[3] = result.last_change;
   distribute_impulses();
-
   comm->reverse_comm(this);
-  double **f = atom->f, **torque = atom->torque;
-  for (int i = 0; i < atom->nlocal; i++)
-    for (int k = 0; k < 3; k++) {
-      f[i][k] += fcontact[i][k];
-      torque[i][k] += tcontact[i][k];
-    }
+  apply_contact_forces(true);
 }
 
 int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)

@@ -61,6 +61,7 @@ class PairGranImpulse : public Pair {
   void gather_pair_contacts();
   void gather_wall_contacts();
   void distribute_impulses();
+  void apply_contact_forces(bool store);
 
   // settings
   int max_sweeps;
@@ -82,6 +83,11 @@ class PairGranImpulse : public Pair {
   // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
   int nmax;
   double **fcontact, **tcontact;
+
+  // The contact force of the last step also acts in the next initial_integrate. Across a run
+  // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
+  // the atoms: 6 values (force, torque) and the step it belongs to.
+  class FixStoreAtom *pending;
 
   // Diagnostics of the last solve (extract()): contacts, sweeps, largest overlap.
   double stats[4];    // contacts, sweeps, largest overlap, last relative impulse change
