@@ -1,0 +1,187 @@
+#include "ag_impulse.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ActiveGrain {
+
+namespace {
+
+// Substeps per compression (or restitution) phase when an impact is integrated; the phase
+// ends are found exactly within the last substep. A cap stops impacts whose normal velocity
+// cannot grow (Painleve-like configurations with large friction).
+constexpr int kSubsteps = 64;
+constexpr int kMaxSubsteps = 200 * kSubsteps;
+
+// Slip is "constant in direction" when the post-impact slip is within this cosine tolerance of
+// the initial one.
+constexpr double kDirectionTolerance = 1.0e-9;
+
+void tangent_basis(const Vec3 &n, Vec3 &t1, Vec3 &t2)
+{
+  const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  t1 = cross(n, a);
+  t1 = t1 / norm(t1);
+  t2 = cross(n, t1);
+}
+
+// Tangential impulse over a substep with normal impulse dp that stops the slip u_t, if the
+// friction cone allows it; otherwise the largest friction impulse mu dp against the current slip.
+Vec3 substep_friction(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Vec3 &t1, const Vec3 &t2,
+                      double mu, double dp)
+{
+  const Vec3 Kt1 = K * t1, Kt2 = K * t2, Kn = K * n;
+  const double a11 = dot(t1, Kt1), a12 = dot(t1, Kt2), a22 = dot(t2, Kt2);
+  const double b1 = -dot(t1, u) - dp * dot(t1, Kn), b2 = -dot(t2, u) - dp * dot(t2, Kn);
+  const double det = a11 * a22 - a12 * a12;
+  const Vec3 stick = t1 * ((a22 * b1 - a12 * b2) / det) + t2 * ((a11 * b2 - a12 * b1) / det);
+  const double stick_norm = norm(stick);
+  const double limit = mu * dp;
+  if (stick_norm <= limit) return stick;
+  const Vec3 ut = u - n * dot(u, n);
+  const double slip = norm(ut);
+  if (slip > 0.0) return ut * (-limit / slip);
+  return stick * (limit / stick_norm);
+}
+
+// Integrate the impact in impulse space with the normal impulse p as the independent variable.
+// Compression lasts while u.n < 0 and the normal impulse does work W_c < 0 then; restitution
+// ends when its work reaches e_work^2 |W_c|. An impact that starts already separating (possible
+// inside a multi-contact solve) ends when u.n reaches target_separation.
+Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, double e_work,
+                      double target_separation)
+{
+  Vec3 t1, t2;
+  tangent_basis(n, t1, t2);
+  const double un0 = dot(u0, n);
+  const double knn = dot(n, K * n);
+  // The substep resolves the larger of the normal phases and the sliding phase (slip can take
+  // more normal impulse to stop than compression needs when friction drives the contact in).
+  const double ktt = 0.5 * (K.m[0][0] + K.m[1][1] + K.m[2][2] - knn);
+  const double slip = norm(u0 - n * un0);
+  const double normal_scale = std::max(std::fabs(un0), target_separation) / knn;
+  const double slip_scale = mu > 0.0 ? slip / (mu * ktt) : 0.0;
+  const double dp = std::max(normal_scale, slip_scale) / kSubsteps;
+
+  Vec3 u = u0, J;
+  double work_compression = 0.0, work_restitution = 0.0;
+  bool compressing = un0 < 0.0;
+  for (int step = 0; step < kMaxSubsteps; ++step) {
+    const Vec3 dJ = n * dp + substep_friction(K, u, n, t1, t2, mu, dp);
+    const Vec3 du = K * dJ;
+    const double un = dot(u, n), dun = dot(du, n);
+    // The fraction s of this substep after which the phase ends (within a substep u.n is
+    // linear in the impulse).
+    double s = 1.0;
+    bool phase_ends = false;
+    if (compressing) {
+      if (un + dun >= 0.0) { s = dun > 0.0 ? -un / dun : 0.0; phase_ends = true; }
+      work_compression += dp * s * (un + 0.5 * s * dun);
+    } else if (work_compression < 0.0) {
+      const double needed = e_work * e_work * -work_compression - work_restitution;
+      const double gain = dp * (un + 0.5 * dun);
+      if (gain >= needed) {
+        // Solve dp (un s + dun s^2 / 2) = needed for s in [0, 1].
+        const double a = 0.5 * dp * dun, b = dp * un;
+        s = (std::fabs(a) > 1e-300) ? (-b + std::sqrt(std::max(0.0, b * b + 4.0 * a * needed))) / (2.0 * a)
+                                    : needed / b;
+        s = std::clamp(s, 0.0, 1.0);
+        phase_ends = true;
+      }
+      work_restitution += dp * s * (un + 0.5 * s * dun);
+    } else if (un + dun >= target_separation) {
+      s = dun > 0.0 ? (target_separation - un) / dun : 0.0;
+      phase_ends = true;
+    }
+    J += dJ * s;
+    u += du * s;
+    if (phase_ends) {
+      if (!compressing) break;
+      compressing = false;
+      if (e_work <= 0.0) break;
+    }
+  }
+
+  // Discretisation of the slip path must not add energy either: if it did, scale the impulse
+  // to the largest one that does not.
+  if (work_compression < 0.0) {
+    const double dE = impulse_energy_change(K, u0, J);
+    if (dE > 0.0) {
+      const double JKJ = dot(J, K * J);
+      J *= std::max(0.0, -2.0 * dot(J, u0) / JKJ);
+    }
+  }
+  return J;
+}
+
+}    // namespace
+
+Mat3 contact_matrix(const RigidBodyState &body1, const Vec3 &r1, const RigidBodyState &body2,
+                    const Vec3 &r2)
+{
+  const Mat3 s1 = Mat3::skew(r1), s2 = Mat3::skew(r2);
+  return Mat3::identity(body1.inv_mass + body2.inv_mass) - s1 * body1.inv_inertia * s1 -
+      s2 * body2.inv_inertia * s2;
+}
+
+double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J)
+{
+  return dot(J, u + K * J * 0.5);
+}
+
+Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
+                         double target_separation)
+{
+  const double un = dot(u, n);
+  if (un >= target_separation) return {};
+
+  const Vec3 ut = u - n * un;
+  const double slip = norm(ut);
+
+  // Stick: the contact leaves with zero slip and normal velocity target_separation. This
+  // closed form is the impact's outcome when the contact sticks throughout (no initial slip) or
+  // when tangential and normal motion are uncoupled (K n parallel to n: spheres). Otherwise the
+  // slip stops part-way and the impact is integrated below: with coupling, the closed form can
+  // gain energy.
+  const Vec3 stick = K.inverse() * (n * target_separation - u);
+  const double stick_n = dot(stick, n);
+  if (stick_n >= 0.0 && norm(stick - n * stick_n) <= material.mu * stick_n) {
+    const Vec3 Kn = K * n;
+    const double coupling = norm(Kn - n * dot(Kn, n)) / dot(Kn, n);
+    const double scale = std::max(std::fabs(un), target_separation);
+    if (slip <= kDirectionTolerance * scale || coupling <= kDirectionTolerance) return stick;
+    return integrate_impact(K, u, n, material.mu,
+                            un < 0.0 ? std::min(1.0, target_separation / -un) : 0.0, target_separation);
+  }
+
+  // Slide along the initial slip direction t: J = j_n (n - mu t). Valid while the slip keeps
+  // its direction through the impact; then the normal velocity is linear in j_n and Newton's,
+  // Poisson's and Stronge's restitution coincide.
+  const Vec3 t = slip > 0.0 ? ut / slip : Vec3();
+  const Vec3 direction = n - t * material.mu;
+  const double k_dir = dot(n, K * direction);
+  if (k_dir > 0.0) {
+    const Vec3 slide = direction * ((target_separation - un) / k_dir);
+    if (material.mu == 0.0) return slide;
+    const Vec3 u_after = u + K * slide;
+    const Vec3 ut_after = u_after - n * dot(u_after, n);
+    if (dot(ut_after, t) >= (1.0 - kDirectionTolerance) * norm(ut_after)) return slide;
+  }
+
+  // Slip stops, reverses or turns during the impact.
+  return integrate_impact(K, u, n, material.mu,
+                          un < 0.0 ? std::min(1.0, target_separation / -un) : 0.0, target_separation);
+}
+
+Vec3 collision_impulse(const RigidBodyState &body1, const RigidBodyState &body2, const Vec3 &point,
+                       const Vec3 &n, const ContactMaterial &material)
+{
+  const Vec3 r1 = point - body1.com, r2 = point - body2.com;
+  const Vec3 u = body2.velocity_at(point) - body1.velocity_at(point);
+  const double un = dot(u, n);
+  if (un >= 0.0) return {};
+  const Mat3 K = contact_matrix(body1, r1, body2, r2);
+  return contact_law_impulse(K, u, n, material, -material.e * un);
+}
+
+}    // namespace ActiveGrain

@@ -1,0 +1,326 @@
+#include "fix_rigid_rod.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "math_extra.h"
+#include "memory.h"
+#include "molecule.h"
+#include "neighbor.h"
+
+#include <cmath>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using ActiveGrain::Mat3;
+using ActiveGrain::Vec3;
+
+namespace {
+// Layout of one atom's row of `state`: what a contact style needs of its body. The offset is
+// the atom's world-frame displacement from the COM, so that the COM of any periodic image of
+// the atom is its own position minus the offset.
+enum { STATE_ID, STATE_INVMASS, STATE_OFFSET, STATE_INVI = STATE_OFFSET + 3, STATE_V = STATE_INVI + 6,
+       STATE_OMEGA = STATE_V + 3, NSTATE = STATE_OMEGA + 3 };
+enum { SUM_VEC, SUM_NTAIL = 3, SUM_NNOSE, NSUM };
+
+Vec3 v3(const double *a) { return Vec3(a); }
+}    // namespace
+
+FixRigidRod::FixRigidRod(LAMMPS *lmp, int narg, char **arg) : FixRigidSmall(lmp, narg, arg)
+{
+  if (!onemols)
+    error->all(FLERR, "Fix rigid/rod: requires the mol keyword naming a rod template (rod_template)");
+  if (nmol != 1) error->all(FLERR, "Fix rigid/rod: the mol template must hold exactly one rod");
+  if (!atom->radius_flag || !atom->rmass_flag)
+    error->all(FLERR, "Fix rigid/rod: needs an atom style with per-atom diameter and mass (sphere)");
+
+  // The template: an axisymmetric rod along its first (tail) to last (nose) atom.
+  Molecule *rod = onemols[0];
+  const int n = rod->natoms;
+  if (n < 2) error->all(FLERR, "Fix rigid/rod: template {} has fewer than 2 atoms", rod->id);
+  tail_type = rod->type[0];
+  nose_type = rod->type[n - 1];
+  for (int i = 1; i < n - 1; ++i)
+    if (rod->type[i] == tail_type || rod->type[i] == nose_type)
+      error->all(FLERR, "Fix rigid/rod: template {}: only the first (tail) and last (nose) atoms may "
+                 "have the tail and nose types", rod->id);
+  if (tail_type == nose_type)
+    error->all(FLERR, "Fix rigid/rod: template {}: tail and nose atoms have the same type", rod->id);
+
+  Vec3 axis = v3(rod->x[n - 1]) - v3(rod->x[0]);
+  axis = axis / ActiveGrain::norm(axis);
+  const Vec3 trial = std::fabs(axis.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  Vec3 across = ActiveGrain::cross(axis, trial);
+  across = across / ActiveGrain::norm(across);
+  const Mat3 itensor = Mat3::symmetric(rod->itensor);
+  inertia_axial = ActiveGrain::dot(axis, itensor * axis);
+  inertia_transverse = ActiveGrain::dot(across, itensor * across);
+  const double scale = inertia_axial + inertia_transverse;
+  if (ActiveGrain::norm(itensor * axis - axis * inertia_axial) > 1e-8 * scale ||
+      ActiveGrain::norm(itensor * across - across * inertia_transverse) > 1e-8 * scale ||
+      !(inertia_axial > 0.0) || !(inertia_transverse > 0.0))
+    error->all(FLERR, "Fix rigid/rod: template {} is not an axisymmetric rod along its tail-to-nose axis",
+               rod->id);
+
+  peratom_flag = 1;
+  size_peratom_cols = 3;
+  peratom_freq = 1;
+  grow_arrays(atom->nmax);
+}
+
+FixRigidRod::~FixRigidRod() noexcept
+{
+  memory->destroy(state);
+  memory->destroy(polar);
+  memory->destroy(polar_sum);
+}
+
+int FixRigidRod::setmask()
+{
+  return FixRigidSmall::setmask() | PRE_FORCE;
+}
+
+void FixRigidRod::init()
+{
+  FixRigidSmall::init();
+  // Any other pair style would treat rod spheres as independent grains or as bodies without
+  // rotational inertia.
+  if (force->pair && !force->pair_match("gran/impulse", 0))
+    error->all(FLERR, "Fix rigid/rod: rods need pair_style gran/impulse (found pair_style {})",
+               force->pair_style);
+  if (!force->pair && comm->me == 0)
+    error->warning(FLERR, "Fix rigid/rod: no pair style defined: rods feel no contacts");
+}
+
+void FixRigidRod::setup_pre_neighbor()
+{
+  // The whole rod must be visible as ghosts where any of its atoms is.
+  const double cutghost = std::max(neighbor->cutneighmax, comm->cutghostuser);
+  if (maxextent > cutghost)
+    error->all(FLERR, "Fix rigid/rod: rod extent {} exceeds the ghost cutoff {}: use comm_modify cutoff {}",
+               maxextent, cutghost, maxextent);
+  const bool reinit = reinitflag || !setupflag;
+  FixRigidSmall::setup_pre_neighbor();
+  if (reinit) impose_rod_bodies();
+}
+
+/* The base class built each body from its atoms: their masses already sum to the solid's mass
+   and centre of mass (rod_template), but their inertia is that of point masses and spheres.
+   Give every body the solid's inertia, keep its angular velocity, and rotate its body frame so
+   that body x is the polar axis (tail -> nose): the quaternion then carries the polarity. */
+void FixRigidRod::impose_rod_bodies()
+{
+  const int nlocal = atom->nlocal;
+  const int nall_body = nlocal_body + nghost_body;
+  double **x = atom->x;
+  int *type = atom->type;
+
+  memory->destroy(polar_sum);
+  memory->create(polar_sum, std::max(nall_body, 1), NSUM, "rigid/rod:polar_sum");
+  for (int ib = 0; ib < nall_body; ++ib)
+    for (int k = 0; k < NSUM; ++k) polar_sum[ib][k] = 0.0;
+
+  double unwrap[3];
+  for (int i = 0; i < nlocal; ++i) {
+    if (atom2body[i] < 0) continue;
+    const double sign = type[i] == nose_type ? 1.0 : (type[i] == tail_type ? -1.0 : 0.0);
+    if (sign == 0.0) continue;
+    double *sum = polar_sum[atom2body[i]];
+    domain->unmap(x[i], xcmimage[i], unwrap);
+    for (int k = 0; k < 3; ++k) sum[SUM_VEC + k] += sign * (unwrap[k] - body[atom2body[i]].xcm[k]);
+    sum[sign > 0 ? SUM_NNOSE : SUM_NTAIL] += 1.0;
+  }
+  rod_comm = RodComm::POLAR_SUM;
+  comm->reverse_comm(this, NSUM);
+  rod_comm = RodComm::NONE;
+
+  int bad = 0;
+  for (int ib = 0; ib < nlocal_body; ++ib) {
+    Body &b = body[ib];
+    const double *sum = polar_sum[ib];
+    const Vec3 tail_to_nose = v3(sum + SUM_VEC);
+    if (sum[SUM_NTAIL] != 1.0 || sum[SUM_NNOSE] != 1.0 || ActiveGrain::norm(tail_to_nose) == 0.0) {
+      bad = 1;
+      continue;
+    }
+    double omega[3];
+    MathExtra::angmom_to_omega(b.angmom, b.ex_space, b.ey_space, b.ez_space, b.inertia, omega);
+
+    const Vec3 ex = tail_to_nose / ActiveGrain::norm(tail_to_nose);
+    const Vec3 old_axes[3] = {v3(b.ex_space), v3(b.ey_space), v3(b.ez_space)};
+    int least = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(ActiveGrain::dot(old_axes[k], ex)) < std::fabs(ActiveGrain::dot(old_axes[least], ex)))
+        least = k;
+    Vec3 ey = old_axes[least] - ex * ActiveGrain::dot(old_axes[least], ex);
+    ey = ey / ActiveGrain::norm(ey);
+    const Vec3 ez = ActiveGrain::cross(ex, ey);
+    ex.store(b.ex_space);
+    ey.store(b.ey_space);
+    ez.store(b.ez_space);
+    b.inertia[0] = inertia_axial;
+    b.inertia[1] = b.inertia[2] = inertia_transverse;
+    MathExtra::exyz_to_q(b.ex_space, b.ey_space, b.ez_space, b.quat);
+
+    const Vec3 w(omega);
+    const Vec3 angmom = ex * (inertia_axial * ActiveGrain::dot(w, ex)) +
+        ey * (inertia_transverse * ActiveGrain::dot(w, ey)) + ez * (inertia_transverse * ActiveGrain::dot(w, ez));
+    angmom.store(b.angmom);
+    w.store(b.omega);
+    double delta[3];
+    MathExtra::sub3(b.xgc, b.xcm, delta);
+    MathExtra::transpose_matvec(b.ex_space, b.ey_space, b.ez_space, delta, b.xgc_body);
+  }
+  int anybad = 0;
+  MPI_Allreduce(&bad, &anybad, 1, MPI_INT, MPI_MAX, world);
+  if (anybad)
+    error->all(FLERR, "Fix rigid/rod: every rod needs exactly one tail atom (type {}) and one nose atom (type {})",
+               tail_type, nose_type);
+
+  // Ghost copies of the bodies, then every atom's body-frame displacement in the new frame.
+  pre_neighbor();
+  for (int i = 0; i < nlocal; ++i) {
+    if (atom2body[i] < 0) continue;
+    Body &b = body[atom2body[i]];
+    double delta[3];
+    domain->unmap(x[i], xcmimage[i], unwrap);
+    MathExtra::sub3(unwrap, b.xcm, delta);
+    MathExtra::transpose_matvec(b.ex_space, b.ey_space, b.ez_space, delta, displace[i]);
+  }
+}
+
+void FixRigidRod::setup_pre_force(int)
+{
+  fill_body_state();
+}
+
+void FixRigidRod::pre_force(int)
+{
+  fill_body_state();
+}
+
+// Runs after this step's positions and communication, before forces: the state contact styles
+// see is that of the bodies at the current positions (half-step velocities, as velocity Verlet).
+void FixRigidRod::fill_body_state()
+{
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; ++i) {
+    double *s = state[i];
+    if (atom2body[i] < 0) {
+      s[STATE_ID] = 0.0;
+      polar[i][0] = polar[i][1] = polar[i][2] = 0.0;
+      continue;
+    }
+    const Body &b = body[atom2body[i]];
+    const Vec3 axes[3] = {v3(b.ex_space), v3(b.ey_space), v3(b.ez_space)};
+    const Vec3 offset = axes[0] * displace[i][0] + axes[1] * displace[i][1] + axes[2] * displace[i][2];
+    Mat3 inv_inertia;
+    for (int k = 0; k < 3; ++k) {
+      if (b.inertia[k] <= 0.0) continue;
+      const Vec3 &e = axes[k];
+      const double c = 1.0 / b.inertia[k];
+      const double ee[3][3] = {{e.x * e.x, e.x * e.y, e.x * e.z}, {e.y * e.x, e.y * e.y, e.y * e.z},
+                               {e.z * e.x, e.z * e.y, e.z * e.z}};
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q) inv_inertia.m[r][q] += c * ee[r][q];
+    }
+    s[STATE_ID] = static_cast<double>(bodytag[i]);
+    s[STATE_INVMASS] = 1.0 / b.mass;
+    offset.store(s + STATE_OFFSET);
+    const double sym[6] = {inv_inertia.m[0][0], inv_inertia.m[1][1], inv_inertia.m[2][2],
+                           inv_inertia.m[0][1], inv_inertia.m[0][2], inv_inertia.m[1][2]};
+    for (int k = 0; k < 6; ++k) s[STATE_INVI + k] = sym[k];
+    for (int k = 0; k < 3; ++k) {
+      s[STATE_V + k] = b.vcm[k];
+      s[STATE_OMEGA + k] = b.omega[k];
+      polar[i][k] = b.ex_space[k];
+    }
+  }
+  rod_comm = RodComm::STATE;
+  comm->forward_comm(this, NSTATE);
+  rod_comm = RodComm::NONE;
+}
+
+bool FixRigidRod::body_of_atom(int i, ActiveGrain::RigidBodyState &b, tagint &body_id) const
+{
+  if (i < 0 || i >= atom->nlocal + atom->nghost || i >= nmax_atom) return false;
+  const double *s = state[i];
+  if (s[STATE_ID] <= 0.0) return false;
+  body_id = static_cast<tagint>(s[STATE_ID]);
+  b.inv_mass = s[STATE_INVMASS];
+  b.inv_inertia = Mat3::symmetric(s + STATE_INVI);
+  b.com = v3(atom->x[i]) - v3(s + STATE_OFFSET);
+  b.v = v3(s + STATE_V);
+  b.omega = v3(s + STATE_OMEGA);
+  return true;
+}
+
+void FixRigidRod::grow_arrays(int nmax)
+{
+  FixRigidSmall::grow_arrays(nmax);
+  if (nmax <= nmax_atom) return;
+  memory->grow(state, nmax, NSTATE, "rigid/rod:state");
+  memory->grow(polar, nmax, 3, "rigid/rod:polar");
+  for (int i = nmax_atom; i < nmax; ++i) {
+    state[i][STATE_ID] = 0.0;
+    polar[i][0] = polar[i][1] = polar[i][2] = 0.0;
+  }
+  nmax_atom = nmax;
+  array_atom = polar;
+}
+
+int FixRigidRod::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
+{
+  if (rod_comm != RodComm::STATE) return FixRigidSmall::pack_forward_comm(n, list, buf, pbc_flag, pbc);
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < NSTATE; ++k) buf[m++] = state[list[i]][k];
+  return m;
+}
+
+void FixRigidRod::unpack_forward_comm(int n, int first, double *buf)
+{
+  if (rod_comm != RodComm::STATE) return FixRigidSmall::unpack_forward_comm(n, first, buf);
+  int m = 0;
+  for (int i = first; i < first + n; ++i)
+    for (int k = 0; k < NSTATE; ++k) state[i][k] = buf[m++];
+}
+
+// Sums of ghost bodies' polar offsets go back to the owning copy (the base class's pattern).
+int FixRigidRod::pack_reverse_comm(int n, int first, double *buf)
+{
+  if (rod_comm != RodComm::POLAR_SUM) return FixRigidSmall::pack_reverse_comm(n, first, buf);
+  int m = 0;
+  for (int i = first; i < first + n; ++i) {
+    if (bodyown[i] < 0) continue;
+    for (int k = 0; k < NSUM; ++k) buf[m++] = polar_sum[bodyown[i]][k];
+  }
+  return m;
+}
+
+void FixRigidRod::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  if (rod_comm != RodComm::POLAR_SUM) return FixRigidSmall::unpack_reverse_comm(n, list, buf);
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const int j = list[i];
+    if (bodyown[j] < 0) continue;
+    for (int k = 0; k < NSUM; ++k) polar_sum[bodyown[j]][k] += buf[m++];
+  }
+}
+
+void *FixRigidRod::extract(const char *name, int &dim)
+{
+  if (strcmp(name, "polar") == 0) {
+    dim = 2;
+    return polar;
+  }
+  return FixRigidSmall::extract(name, dim);
+}
+
+double FixRigidRod::memory_usage()
+{
+  return FixRigidSmall::memory_usage() + (double) nmax_atom * (NSTATE + 3) * sizeof(double);
+}

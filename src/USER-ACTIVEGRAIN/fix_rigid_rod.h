@@ -1,0 +1,45 @@
+// fix rigid/rod: tapered polar rods as rigid bodies (fix rigid/small) with the solid's true
+// inertia, a body frame whose x axis is the polar axis (tail -> nose), and per-atom body state
+// for the contact styles (RigidBodyProvider), owned and ghost atoms. See docs/fix_rigid_rod.rst.
+#pragma once
+
+#include "fix_rigid_small.h"
+#include "rigid_body_provider.h"
+
+namespace LAMMPS_NS {
+
+class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
+ public:
+  FixRigidRod(class LAMMPS *, int, char **);
+  ~FixRigidRod() noexcept override;
+  int setmask() override;
+  void init() override;
+  void setup_pre_neighbor() override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
+  void grow_arrays(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  void *extract(const char *, int &) override;
+  double memory_usage() override;
+
+  bool body_of_atom(int i, ActiveGrain::RigidBodyState &body, tagint &body_id) const override;
+
+ private:
+  enum class RodComm { NONE, STATE, POLAR_SUM };
+  RodComm rod_comm = RodComm::NONE;    // our own comm pass, else the base class's
+
+  int tail_type = 0, nose_type = 0;                           // from the template's end atoms
+  double inertia_axial = 0.0, inertia_transverse = 0.0;       // of the solid rod
+  double **state = nullptr;        // per atom (owned + ghost): see STATE_* in the .cpp
+  double **polar = nullptr;        // per owned atom: its rod's polar axis (world frame), else 0
+  double **polar_sum = nullptr;    // per body, during setup: sum of nose - tail offsets, counts
+  int nmax_atom = 0;
+
+  void impose_rod_bodies();
+  void fill_body_state();
+};
+
+}    // namespace LAMMPS_NS

@@ -1,0 +1,182 @@
+/* ----------------------------------------------------------------------
+   ActiveGrain: fix wall/impulse. The base plate z_base(t) = z0 + A sin(2 pi f t + phase) and
+   a lid at z_base + gap (moving with it), at z0 + gap (fixed), or none. Provides contact
+   geometry to pair gran/impulse, which resolves the contacts with the same impulse law as
+   particle contacts.
+------------------------------------------------------------------------- */
+
+#include "fix_wall_impulse.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "math_const.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using MathConst::MY_2PI;
+using ActiveGrain::Vec3;
+
+static const char *const STYLE = "Fix wall/impulse";
+
+// A vibration needs at least this many time steps per period.
+static constexpr double MIN_STEPS_PER_PERIOD = 20.0;
+// Warn when the plates move more than this fraction of the gap in one step.
+static constexpr double MAX_STEP_TRAVEL = 0.01;
+
+/* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
+       [vibrate A F PHASE] [type T E MU] */
+FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
+    lid(Lid::NONE), materials(lmp, STYLE), delivered{{0, 0, 0}, {0, 0, 0}}
+{
+  if (narg < 5 || strcmp(arg[3], "zlo") != 0)
+    error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);
+  z0 = utils::numeric(FLERR, arg[4], false, lmp);
+  bool lid_given = false;
+  Lid lid_motion = Lid::MOVING;
+  int iarg = 5;
+  while (iarg < narg) {
+    const int next = materials.parse(narg, arg, iarg);
+    if (next != iarg) { iarg = next; continue; }
+    const std::string key = arg[iarg];
+    if (key == "gap") {
+      if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after gap", STYLE);
+      gap = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (gap <= 0.0) error->all(FLERR, "{}: gap must be > 0", STYLE);
+      lid_given = true;
+      iarg += 2;
+    } else if (key == "lid") {
+      if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after lid", STYLE);
+      const std::string mode = arg[iarg + 1];
+      if (mode == "moving") lid_motion = Lid::MOVING;
+      else if (mode == "fixed") lid_motion = Lid::FIXED;
+      else if (mode == "none") lid_motion = Lid::NONE;
+      else error->all(FLERR, "{}: lid must be moving, fixed or none, not {}", STYLE, mode);
+      iarg += 2;
+    } else if (key == "vibrate") {
+      if (iarg + 4 > narg) error->all(FLERR, "{}: vibrate needs amplitude, frequency, phase", STYLE);
+      amplitude = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      frequency = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      phase = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+      if (amplitude < 0.0 || frequency < 0.0)
+        error->all(FLERR, "{}: vibration amplitude and frequency must be >= 0", STYLE);
+      iarg += 4;
+    } else {
+      error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
+    }
+  }
+  materials.check_complete();
+  if (lid_motion == Lid::FIXED && !lid_given)
+    error->all(FLERR, "{}: lid fixed needs a gap", STYLE);
+  lid = lid_given ? lid_motion : Lid::NONE;
+  if (domain->zperiodic)
+    error->all(FLERR, "{}: cannot be used with a periodic z dimension (use boundary ... f or m)", STYLE);
+
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 9;
+  global_freq = 1;
+  extscalar = 0;
+  extvector = 0;
+}
+
+int FixWallImpulse::setmask()
+{
+  return 0;    // the pair style calls this fix; it has no integration hooks
+}
+
+void FixWallImpulse::init()
+{
+  if (!force->pair_match("^gran/impulse", 0))
+    error->all(FLERR, "{} requires pair_style gran/impulse", STYLE);
+  if (!atom->radius_flag) error->all(FLERR, "{} requires atom attribute radius", STYLE);
+  const double dt = update->dt;
+  if (amplitude > 0.0 && frequency > 0.0) {
+    const double steps_per_period = 1.0 / (frequency * dt);
+    if (steps_per_period < MIN_STEPS_PER_PERIOD)
+      error->all(FLERR, "{}: time step {} too large for the vibration: {:.3g} steps per period (need >= {})",
+                 STYLE, dt, steps_per_period, MIN_STEPS_PER_PERIOD);
+    const double travel = MY_2PI * frequency * amplitude * dt;
+    if (lid != Lid::NONE && travel > MAX_STEP_TRAVEL * gap && comm->me == 0)
+      error->warning(FLERR, "{}: plates move {:.3g} per step, more than {} of the gap", STYLE, travel,
+                     MAX_STEP_TRAVEL);
+  }
+}
+
+// Simulation time of the current positions; continues exactly across restarts.
+double FixWallImpulse::time_now() const
+{
+  return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+}
+
+double FixWallImpulse::base_z(double t) const
+{
+  return z0 + amplitude * std::sin(MY_2PI * frequency * t + phase);
+}
+
+double FixWallImpulse::base_vz(double t) const
+{
+  return MY_2PI * frequency * amplitude * std::cos(MY_2PI * frequency * t + phase);
+}
+
+void FixWallImpulse::find_wall_contacts(double reach, std::vector<Contact> &contacts)
+{
+  const double t = time_now();
+  const double zb = base_z(t), vb = base_vz(t);
+  const double zlid = lid == Lid::MOVING ? zb + gap : z0 + gap;
+  const double vlid = lid == Lid::MOVING ? vb : 0.0;
+  memset(delivered, 0, sizeof(delivered));
+
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double r = radius[i];
+    const double base_gap = x[i][2] - r - zb;
+    if (base_gap < reach)
+      contacts.push_back({i, BASE, Vec3(0, 0, 1), Vec3(x[i][0], x[i][1], x[i][2] - r), base_gap,
+                          Vec3(0, 0, vb), materials.of_type(type[i])});
+    if (lid == Lid::NONE) continue;
+    const double lid_gap = zlid - (x[i][2] + r);
+    if (lid_gap < reach)
+      contacts.push_back({i, LID, Vec3(0, 0, -1), Vec3(x[i][0], x[i][1], x[i][2] + r), lid_gap,
+                          Vec3(0, 0, vlid), materials.of_type(type[i])});
+  }
+}
+
+void FixWallImpulse::add_delivered_impulse(int surface, const Vec3 &J)
+{
+  delivered[surface][0] += J.x;
+  delivered[surface][1] += J.y;
+  delivered[surface][2] += J.z;
+}
+
+// Base plate position at the current step.
+double FixWallImpulse::compute_scalar()
+{
+  return base_z(time_now());
+}
+
+// 1 base z, 2 lid z (base z without a lid), 3 plate velocity, 4-6 impulse on atoms from the
+// base, 7-9 from the lid, in the last force computation.
+double FixWallImpulse::compute_vector(int n)
+{
+  const double t = time_now();
+  if (n == 0) return base_z(t);
+  if (n == 1) return lid == Lid::MOVING ? base_z(t) + gap : lid == Lid::FIXED ? z0 + gap : base_z(t);
+  if (n == 2) return base_vz(t);
+  double mine[6], all[6];
+  memcpy(mine, delivered, sizeof(mine));
+  MPI_Allreduce(mine, all, 6, MPI_DOUBLE, MPI_SUM, world);
+  return all[n - 3];
+}

@@ -1,0 +1,100 @@
+/* ----------------------------------------------------------------------
+   ActiveGrain: fix wall/impulse/region. The surface of a region (planes, cylinders, unions and
+   intersections of them; moving regions too) as a wall of infinite mass; particles stay on the
+   region's inside. Provides contact geometry to pair gran/impulse.
+------------------------------------------------------------------------- */
+
+#include "fix_wall_impulse_region.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "region.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using ActiveGrain::Vec3;
+
+static const char *const STYLE = "Fix wall/impulse/region";
+
+/* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
+FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), region(nullptr), materials(lmp, STYLE), delivered{0, 0, 0}
+{
+  if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
+  region_id = arg[3];
+  region = domain->get_region_by_id(region_id);
+  if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
+  int iarg = 4;
+  while (iarg < narg) {
+    const int next = materials.parse(narg, arg, iarg);
+    if (next == iarg) error->all(FLERR, "{}: unknown keyword {}", STYLE, arg[iarg]);
+    iarg = next;
+  }
+  materials.check_complete();
+
+  vector_flag = 1;
+  size_vector = 3;
+  global_freq = 1;
+  extvector = 0;
+}
+
+int FixWallImpulseRegion::setmask()
+{
+  return 0;    // the pair style calls this fix; it has no integration hooks
+}
+
+void FixWallImpulseRegion::init()
+{
+  region = domain->get_region_by_id(region_id);
+  if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
+  if (!force->pair_match("^gran/impulse", 0))
+    error->all(FLERR, "{} requires pair_style gran/impulse", STYLE);
+  if (!atom->radius_flag) error->all(FLERR, "{} requires atom attribute radius", STYLE);
+  region->init();
+}
+
+void FixWallImpulseRegion::find_wall_contacts(double reach, std::vector<Contact> &contacts)
+{
+  memset(delivered, 0, sizeof(delivered));
+  const bool moving = region->dynamic_check();
+  region->prematch();
+  if (moving) region->set_velocity();
+
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    // Atoms whose centre has left the region's inside are not pulled back.
+    if (!region->match(x[i][0], x[i][1], x[i][2])) continue;
+    const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + reach);
+    for (int ic = 0; ic < nc; ic++) {
+      const Region::Contact &rc = region->contact[ic];
+      const Vec3 n = Vec3(rc.delx, rc.dely, rc.delz) / rc.r;    // from the wall to the atom
+      Vec3 wall_velocity;
+      if (moving) region->velocity_contact(&wall_velocity.x, x[i], ic);
+      contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], rc.r - radius[i], wall_velocity,
+                          materials.of_type(type[i])});
+    }
+  }
+}
+
+void FixWallImpulseRegion::add_delivered_impulse(int, const Vec3 &J)
+{
+  delivered[0] += J.x;
+  delivered[1] += J.y;
+  delivered[2] += J.z;
+}
+
+// Impulse on atoms from the region's surface in the last force computation (x, y, z).
+double FixWallImpulseRegion::compute_vector(int n)
+{
+  double all[3];
+  MPI_Allreduce(delivered, all, 3, MPI_DOUBLE, MPI_SUM, world);
+  return all[n];
+}

@@ -1,0 +1,40 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ActiveGrain: fix wall/impulse/region, side walls of any shape from a LAMMPS region.
+------------------------------------------------------------------------- */
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(wall/impulse/region,FixWallImpulseRegion);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_WALL_IMPULSE_REGION_H
+#define LMP_FIX_WALL_IMPULSE_REGION_H
+
+#include "fix.h"
+#include "impulse_wall.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class FixWallImpulseRegion : public Fix, public ImpulseWall {
+ public:
+  FixWallImpulseRegion(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  double compute_vector(int) override;
+
+  void find_wall_contacts(double reach, std::vector<Contact> &contacts) override;
+  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) override;
+
+ private:
+  std::string region_id;
+  class Region *region;
+  WallMaterials materials;
+  double delivered[3];    // this rank's impulse on atoms, last force computation
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,65 @@
+#include "impulse_wall.h"
+
+#include "atom.h"
+#include "error.h"
+#include "utils.h"
+
+using namespace LAMMPS_NS;
+
+void LAMMPS_NS::check_material(Error *error, const std::string &style, double e, double mu)
+{
+  if (e < 0.0 || e > 1.0)
+    error->all(FLERR, "{}: restitution coefficient e = {} must be in [0, 1]", style, e);
+  if (mu < 0.0) error->all(FLERR, "{}: friction coefficient mu = {} must be >= 0", style, mu);
+}
+
+ActiveGrain::ContactMaterial WallMaterials::checked(const char *e, const char *mu) const
+{
+  ActiveGrain::ContactMaterial m;
+  m.e = utils::numeric(FLERR, e, false, lmp);
+  m.mu = utils::numeric(FLERR, mu, false, lmp);
+  check_material(error, style_, m.e, m.mu);
+  return m;
+}
+
+int WallMaterials::parse(int narg, char **arg, int iarg)
+{
+  const int ntypes = atom->ntypes;
+  if (per_type_.empty()) {
+    per_type_.resize(ntypes + 1);
+    set_.assign(ntypes + 1, false);
+  }
+  const std::string key = arg[iarg];
+  if (key == "e" || key == "mu") {
+    if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", style_, key);
+    const double value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    if (key == "e") check_material(error, style_, value, 0.0);
+    else check_material(error, style_, 0.0, value);
+    (key == "e" ? e_all_ : mu_all_) = value;
+    for (int t = 1; t <= ntypes; ++t)
+      if (!set_[t]) (key == "e" ? per_type_[t].e : per_type_[t].mu) = value;
+    return iarg + 2;
+  }
+  if (key == "type") {
+    if (iarg + 4 > narg) error->all(FLERR, "{}: keyword type needs a type and values e mu", style_);
+    int lo, hi;
+    utils::bounds(FLERR, arg[iarg + 1], 1, ntypes, lo, hi, error);
+    const ActiveGrain::ContactMaterial m = checked(arg[iarg + 2], arg[iarg + 3]);
+    for (int t = lo; t <= hi; ++t) {
+      per_type_[t] = m;
+      set_[t] = true;
+    }
+    return iarg + 4;
+  }
+  return iarg;
+}
+
+void WallMaterials::check_complete() const
+{
+  for (int t = 1; t < (int) per_type_.size(); ++t)
+    if (!set_[t] && (e_all_ < 0.0 || mu_all_ < 0.0))
+      error->all(FLERR, "{}: no restitution e and friction mu for atom type {} (use keywords e and mu, or type)",
+                 style_, t);
+  if (per_type_.empty())
+    error->all(FLERR, "{}: keywords e and mu are required", style_);
+}

@@ -1,0 +1,58 @@
+// What pair gran/impulse needs from a wall fix (fix wall/impulse, fix wall/impulse/region): the
+// geometry of the contacts of owned atoms with the wall, and a place to report the impulse the
+// wall delivered. The pair style finds wall fixes by dynamic_cast over Modify's fix list and
+// solves wall and particle contacts together.
+#pragma once
+
+#include "ag_impulse.h"
+#include "pointers.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class ImpulseWall {
+ public:
+  struct Contact {
+    int atom;                               // owned atom index
+    int surface;                            // which surface of the fix (for its output)
+    ActiveGrain::Vec3 normal;               // unit, from the wall into the atom
+    ActiveGrain::Vec3 point;                // contact point (on the atom's surface)
+    double gap;                             // surface separation, < 0 for an overlap
+    ActiveGrain::Vec3 wall_velocity;        // velocity of the wall at the point
+    ActiveGrain::ContactMaterial material;
+  };
+
+  // noexcept(false) like LAMMPS's Pointers, so that a Fix can also be an ImpulseWall.
+  virtual ~ImpulseWall() noexcept(false) = default;
+  // Append the contacts of owned atoms of the fix's group whose gap is below reach; the pair
+  // style decides which of them close within the step. Called once per force computation.
+  virtual void find_wall_contacts(double reach, std::vector<Contact> &contacts) = 0;
+  // The impulse delivered to atoms through a surface in this force computation.
+  virtual void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) = 0;
+};
+
+// Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then
+// "type T E MU" (T may be a range like 2*3) to override some. Parsed by both wall fixes.
+class WallMaterials : protected Pointers {
+ public:
+  WallMaterials(LAMMPS *lmp, const std::string &style) : Pointers(lmp), style_(style) {}
+  // Consume a material keyword at arg[iarg]; returns the next index, or iarg if not one.
+  int parse(int narg, char **arg, int iarg);
+  // Errors unless every type has its coefficients.
+  void check_complete() const;
+  const ActiveGrain::ContactMaterial &of_type(int type) const { return per_type_[type]; }
+
+ private:
+  ActiveGrain::ContactMaterial checked(const char *e, const char *mu) const;
+  std::string style_;
+  std::vector<ActiveGrain::ContactMaterial> per_type_;
+  std::vector<bool> set_;
+  double e_all_ = -1.0, mu_all_ = -1.0;
+};
+
+// Error unless e is in [0, 1] and mu >= 0: shared by the pair style and the wall fixes.
+void check_material(Error *error, const std::string &style, double e, double mu);
+
+}    // namespace LAMMPS_NS

@@ -1,0 +1,450 @@
+/* ----------------------------------------------------------------------
+   ActiveGrain: pair_style gran/impulse. Thin adapter from LAMMPS's arrays to the contact core:
+   gathers particle and wall contacts, solves them together with the core's ContactSolver, and
+   turns each contact impulse J into a force J/dt (and torque) on the contacting atoms. Velocity
+   Verlet then applies half of it in this step's final_integrate and half in the next
+   initial_integrate, before positions move.
+------------------------------------------------------------------------- */
+
+#include "pair_gran_impulse.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix.h"
+#include "fix_store_atom.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "rigid_body_provider.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using ActiveGrain::ContactMaterial;
+using ActiveGrain::RigidBodyState;
+using ActiveGrain::Vec3;
+
+static const char *const STYLE = "Pair gran/impulse";
+static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
+static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
+
+PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
+    Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
+    maxrad(nullptr), pending(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr),
+    stats{0, 0, 0, 0}
+{
+  single_enable = 0;
+  restartinfo = 1;
+  finitecutflag = 1;
+  comm_reverse = 6;
+  // Contact forces reach owners through this style's own reverse communication, so the f.r
+  // virial over owned and ghost atoms would be wrong: no virial from this style.
+  no_virial_fdotr_compute = 1;
+}
+
+PairGranImpulse::~PairGranImpulse()
+{
+  if (pending) modify->delete_fix(PENDING_ID);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(restitution);
+    memory->destroy(friction);
+    delete[] maxrad;
+  }
+  memory->destroy(fcontact);
+  memory->destroy(tcontact);
+}
+
+void PairGranImpulse::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(restitution, n, n, "pair:restitution");
+  memory->create(friction, n, n, "pair:friction");
+  maxrad = new double[n];
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) setflag[i][j] = 0;
+}
+
+/* pair_style gran/impulse [sweeps N] [tolerance T] [beta B] */
+void PairGranImpulse::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", STYLE, key);
+    if (key == "sweeps") {
+      max_sweeps = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (max_sweeps < 1) error->all(FLERR, "{}: sweeps must be >= 1", STYLE);
+    } else if (key == "tolerance") {
+      tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (tolerance < 0.0) error->all(FLERR, "{}: tolerance must be >= 0", STYLE);
+    } else if (key == "beta") {
+      beta = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (beta < 0.0 || beta > 1.0) error->all(FLERR, "{}: beta must be in [0, 1]", STYLE);
+    } else {
+      error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
+    }
+    iarg += 2;
+  }
+}
+
+/* pair_coeff I J e mu */
+void PairGranImpulse::coeff(int narg, char **arg)
+{
+  if (narg != 4) error->all(FLERR, "{}: pair_coeff needs I J e mu", STYLE);
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  const double e = utils::numeric(FLERR, arg[2], false, lmp);
+  const double mu = utils::numeric(FLERR, arg[3], false, lmp);
+  check_material(error, STYLE, e, mu);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      restitution[i][j] = e;
+      friction[i][j] = mu;
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "{}: incorrect args for pair coefficients", STYLE);
+}
+
+void PairGranImpulse::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "{} requires atom attributes radius, rmass, omega and torque (atom_style sphere)", STYLE);
+  if (!atom->tag_enable) error->all(FLERR, "{} requires atom IDs", STYLE);
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "{} requires ghost atoms to store velocity: use comm_modify vel yes", STYLE);
+
+  neighbor->add_request(this, NeighConst::REQ_SIZE);
+
+  pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
+  if (!pending)
+    pending = dynamic_cast<FixStoreAtom *>(
+        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, PENDING_STEP + 1)));
+
+  providers.clear();
+  walls.clear();
+  for (Fix *fix : modify->get_fix_list()) {
+    if (auto provider = dynamic_cast<RigidBodyProvider *>(fix)) providers.push_back(provider);
+    if (auto wall = dynamic_cast<ImpulseWall *>(fix)) walls.push_back(wall);
+  }
+
+  // Largest radius of each type present now: neighbor cutoffs are radius sums plus the skin.
+  const int ntypes = atom->ntypes;
+  std::vector<double> local(ntypes + 1, 0.0);
+  for (int i = 0; i < atom->nlocal; i++)
+    local[atom->type[i]] = std::max(local[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(local.data(), maxrad, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  const double largest = *std::max_element(maxrad + 1, maxrad + ntypes + 1);
+  for (int t = 1; t <= ntypes; t++)
+    if (maxrad[t] == 0.0) maxrad[t] = largest;
+}
+
+double PairGranImpulse::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) {
+    // Mixing: geometric means of the like-type coefficients.
+    restitution[i][j] = std::sqrt(restitution[i][i] * restitution[j][j]);
+    friction[i][j] = std::sqrt(friction[i][i] * friction[j][j]);
+  }
+  restitution[j][i] = restitution[i][j];
+  friction[j][i] = friction[i][j];
+  return maxrad[i] + maxrad[j];
+}
+
+void PairGranImpulse::grow_buffers()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  if (nall > nmax) {
+    nmax = atom->nmax;
+    memory->destroy(fcontact);
+    memory->destroy(tcontact);
+    memory->create(fcontact, nmax, 3, "pair:fcontact");
+    memory->create(tcontact, nmax, 3, "pair:tcontact");
+  }
+  if (nall > 0) {
+    memset(&fcontact[0][0], 0, sizeof(double) * 3 * nall);
+    memset(&tcontact[0][0], 0, sizeof(double) * 3 * nall);
+  }
+  atom_body.assign(nall, -1);
+}
+
+// The solver body of atom i: its rigid body if a provider claims it (all atoms of one body
+// share one solver body), else a solid sphere. Ghost images of one bead share its body too.
+int PairGranImpulse::body_of_atom(int i)
+{
+  if (atom_body[i] >= 0) return atom_body[i];
+  RigidBodyState state;
+  tagint id = 0;
+  tagint key = -1;
+  for (RigidBodyProvider *provider : providers)
+    if (provider->body_of_atom(i, state, id)) {
+      key = 2 * id + 1;
+      break;
+    }
+  if (key < 0) {
+    key = 2 * atom->tag[i];
+    state = RigidBodyState::sphere(atom->rmass[i], atom->radius[i], Vec3(atom->x[i]),
+                                   Vec3(atom->v[i]), Vec3(atom->omega[i]));
+  }
+  auto found = body_index.find(key);
+  const int body = found != body_index.end() ? found->second : solver.add_body(state);
+  if (found == body_index.end()) body_index.emplace(key, body);
+  atom_body[i] = body;
+  return body;
+}
+
+// Lever arm from body's centre of mass to point, taken from atom i's own image of the body.
+Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
+{
+  double com[3], com_image[3];
+  solver.body(body).com.store(com);
+  domain->closest_image(atom->x[i], com, com_image);
+  return point - Vec3(com_image);
+}
+
+void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall,
+                                  int surface, const Vec3 &point, const Vec3 &n, double gap,
+                                  const ContactMaterial &material, const Vec3 &r1, const Vec3 &r2)
+{
+  const double dt = update->dt;
+  // Predictive contact: in contact if the gap closes within this step at the current normal
+  // velocity, or already overlaps; an overlap must at least open at beta * overlap / dt.
+  const RigidBodyState &b1 = solver.body(body1), &b2 = solver.body(body2);
+  const Vec3 u = (b2.v + cross(b2.omega, r2)) - (b1.v + cross(b1.omega, r1));
+  if (gap + dot(u, n) * dt >= 0.0) return;
+  const double min_separation = gap < 0.0 ? beta * -gap / dt : 0.0;
+  solver.add_contact_arms(body1, body2, r1, r2, n, material, min_separation);
+  atom_contacts.push_back({atom1, atom2, wall, surface, point});
+  stats[2] = std::max(stats[2], -gap);
+}
+
+void PairGranImpulse::gather_pair_contacts()
+{
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const double reach = neighbor->skin;
+  const bool newton = force->newton_pair;
+
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      // With newton off a pair with a ghost is listed on both ranks: keep it on one.
+      if (!newton && j >= nlocal && tag[j] < tag[i]) continue;
+      Vec3 d = Vec3(x[j]) - Vec3(x[i]);
+      const double radsum = radius[i] + radius[j];
+      const double rsq = norm2(d);
+      if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
+      const double r = std::sqrt(rsq);
+      const Vec3 n = d / r;    // from i to j
+      const double gap = r - radsum;
+      const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
+      const int bi = body_of_atom(i), bj = body_of_atom(j);
+      if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
+      const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
+      add_contact(bi, bj, i, j, nullptr, 0, point, n, gap, material, lever_arm(i, bi, point),
+                  lever_arm(j, bj, point));
+    }
+  }
+}
+
+void PairGranImpulse::gather_wall_contacts()
+{
+  const double reach = neighbor->skin;
+  for (ImpulseWall *wall : walls) {
+    wall_scratch.clear();
+    wall->find_wall_contacts(reach, wall_scratch);
+    for (const ImpulseWall::Contact &c : wall_scratch) {
+      const int b = body_of_atom(c.atom);
+      const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
+      add_contact(w, b, -1, c.atom, wall, c.surface, c.point, c.normal, c.gap, c.material, Vec3(),
+                  lever_arm(c.atom, b, c.point));
+    }
+  }
+}
+
+void PairGranImpulse::distribute_impulses()
+{
+  const double to_force = 1.0 / update->dt;
+  double **x = atom->x;
+  auto push = [&](int i, const Vec3 &F, const Vec3 &point) {
+    const Vec3 torque = cross(point - Vec3(x[i]), F);
+    for (int k = 0; k < 3; k++) {
+      fcontact[i][k] += (&F.x)[k];
+      tcontact[i][k] += (&torque.x)[k];
+    }
+  };
+  for (int c = 0; c < solver.num_contacts(); c++) {
+    const AtomContact &ac = atom_contacts[c];
+    const Vec3 &J = solver.impulse(c);
+    const Vec3 F = J * to_force;
+    push(ac.atom2, F, ac.point);
+    if (ac.atom1 >= 0) push(ac.atom1, -F, ac.point);
+    else ac.wall->add_delivered_impulse(ac.surface, J);
+  }
+}
+
+// Add the contact forces to owned atoms; remember them for a run that continues from here.
+void PairGranImpulse::apply_contact_forces(bool store)
+{
+  double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
+  const double step = (double) update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++) {
+    for (int k = 0; k < 3; k++) {
+      f[i][k] += fcontact[i][k];
+      torque[i][k] += tcontact[i][k];
+    }
+    if (!store) continue;
+    for (int k = 0; k < 3; k++) {
+      saved[i][k] = fcontact[i][k];
+      saved[i][3 + k] = tcontact[i][k];
+    }
+    saved[i][PENDING_STEP] = step;
+  }
+}
+
+void PairGranImpulse::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  grow_buffers();
+
+  if (update->setupflag) {
+    // Contacts are solved in the steps. At setup only the force of the step this run
+    // continues from (if any) comes back, so that its initial_integrate completes the impulse.
+    double **saved = pending->astore;
+    const double step = (double) update->ntimestep;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (saved[i][PENDING_STEP] == step)
+        for (int k = 0; k < 3; k++) {
+          fcontact[i][k] = saved[i][k];
+          tcontact[i][k] = saved[i][3 + k];
+        }
+    apply_contact_forces(false);
+    return;
+  }
+
+  solver.clear();
+  body_index.clear();
+  atom_contacts.clear();
+  stats[2] = 0.0;
+  gather_pair_contacts();
+  gather_wall_contacts();
+  const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
+  stats[0] = solver.num_contacts();
+  stats[1] = result.sweeps;
+  stats[3] = result.last_change;
+  distribute_impulses();
+  comm->reverse_comm(this);
+  apply_contact_forces(true);
+}
+
+int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++)
+    for (int k = 0; k < 3; k++) {
+      buf[m++] = fcontact[i][k];
+      buf[m++] = tcontact[i][k];
+    }
+  return m;
+}
+
+void PairGranImpulse::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    const int j = list[i];
+    for (int k = 0; k < 3; k++) {
+      fcontact[j][k] += buf[m++];
+      tcontact[j][k] += buf[m++];
+    }
+  }
+}
+
+void PairGranImpulse::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) {
+        fwrite(&restitution[i][j], sizeof(double), 1, fp);
+        fwrite(&friction[i][j], sizeof(double), 1, fp);
+      }
+    }
+}
+
+void PairGranImpulse::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (setflag[i][j]) {
+        if (me == 0) {
+          utils::sfread(FLERR, &restitution[i][j], sizeof(double), 1, fp, nullptr, error);
+          utils::sfread(FLERR, &friction[i][j], sizeof(double), 1, fp, nullptr, error);
+        }
+        MPI_Bcast(&restitution[i][j], 1, MPI_DOUBLE, 0, world);
+        MPI_Bcast(&friction[i][j], 1, MPI_DOUBLE, 0, world);
+      }
+    }
+}
+
+void PairGranImpulse::write_restart_settings(FILE *fp)
+{
+  fwrite(&max_sweeps, sizeof(int), 1, fp);
+  fwrite(&tolerance, sizeof(double), 1, fp);
+  fwrite(&beta, sizeof(double), 1, fp);
+}
+
+void PairGranImpulse::read_restart_settings(FILE *fp)
+{
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &max_sweeps, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&max_sweeps, 1, MPI_INT, 0, world);
+  MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
+}
+
+// "contact_stats": this rank's last solve: contacts, sweeps, largest overlap, last change.
+void *PairGranImpulse::extract(const char *name, int &dim)
+{
+  dim = 1;
+  if (strcmp(name, "contact_stats") == 0) return (void *) stats;
+  dim = 2;
+  if (strcmp(name, "e") == 0) return (void *) restitution;
+  if (strcmp(name, "mu") == 0) return (void *) friction;
+  return nullptr;
+}
+
+double PairGranImpulse::memory_usage()
+{
+  return 6.0 * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
+      (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
+}

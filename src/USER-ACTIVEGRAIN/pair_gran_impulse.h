@@ -1,0 +1,99 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ActiveGrain: pair_style gran/impulse, frictional restitutive impulse contacts.
+------------------------------------------------------------------------- */
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(gran/impulse,PairGranImpulse);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_GRAN_IMPULSE_H
+#define LMP_PAIR_GRAN_IMPULSE_H
+
+#include "ag_contact_solver.h"
+#include "impulse_wall.h"
+#include "pair.h"
+
+#include <unordered_map>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class RigidBodyProvider;
+
+class PairGranImpulse : public Pair {
+ public:
+  PairGranImpulse(class LAMMPS *);
+  ~PairGranImpulse() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  void *extract(const char *, int &) override;
+  double memory_usage() override;
+
+ private:
+  // One contact as LAMMPS sees it: which atoms get the impulse and where.
+  struct AtomContact {
+    int atom1;                 // -1 for a wall
+    int atom2;
+    ImpulseWall *wall;         // the wall fix for wall contacts
+    int surface;
+    ActiveGrain::Vec3 point;
+  };
+
+  void allocate();
+  void grow_buffers();
+  int body_of_atom(int i);
+  ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
+  void add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall, int surface,
+                   const ActiveGrain::Vec3 &point, const ActiveGrain::Vec3 &n, double gap,
+                   const ActiveGrain::ContactMaterial &material, const ActiveGrain::Vec3 &r1,
+                   const ActiveGrain::Vec3 &r2);
+  void gather_pair_contacts();
+  void gather_wall_contacts();
+  void distribute_impulses();
+  void apply_contact_forces(bool store);
+
+  // settings
+  int max_sweeps;
+  double tolerance;
+  double beta;    // overlaps leave at >= beta * overlap / dt
+
+  double **restitution, **friction;
+  double *maxrad;    // largest radius per type (neighbor cutoff)
+
+  std::vector<RigidBodyProvider *> providers;
+  std::vector<ImpulseWall *> walls;
+
+  ActiveGrain::ContactSolver solver;
+  std::vector<AtomContact> atom_contacts;
+  std::vector<ImpulseWall::Contact> wall_scratch;
+  std::unordered_map<tagint, int> body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
+  std::vector<int> atom_body;                     // solver body of each atom, -1 before lookup
+
+  // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
+  int nmax;
+  double **fcontact, **tcontact;
+
+  // The contact force of the last step also acts in the next initial_integrate. Across a run
+  // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
+  // the atoms: 6 values (force, torque) and the step it belongs to.
+  class FixStoreAtom *pending;
+
+  // Diagnostics of the last solve (extract()): contacts, sweeps, largest overlap.
+  double stats[4];    // contacts, sweeps, largest overlap, last relative impulse change
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,120 @@
+#include "rod_template.h"
+
+#include "ag_rod_geometry.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "input.h"
+#include "utils.h"
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+using namespace LAMMPS_NS;
+using ActiveGrain::RodParameters;
+
+/* Syntax: rod_template ID length L tail Dt nose Dn spheres N density rho
+             [types Ttail Tbody Tnose] [file NAME] [taper_check yes/no] */
+void RodTemplate::command(int narg, char **arg)
+{
+  if (narg < 1) error->all(FLERR, "Rod_template: missing template ID");
+  if (!domain->box_exist) error->all(FLERR, "Rod_template: must come after the box is defined");
+  if (!atom->radius_flag || !atom->rmass_flag)
+    error->all(FLERR, "Rod_template: needs an atom style with per-atom diameter and mass (sphere)");
+
+  const std::string id = arg[0];
+  RodParameters p;
+  bool have[5] = {false, false, false, false, false};
+  int types[3] = {1, 2, 3};
+  std::string file = id + ".mol";
+  bool taper_check = false;
+
+  int iarg = 1;
+  auto value = [&](const char *key, int count) {
+    if (iarg + count >= narg) error->all(FLERR, "Rod_template: keyword {} needs {} value(s)", key, count);
+    return arg + iarg + 1;
+  };
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "length") {
+      p.length = utils::numeric(FLERR, *value("length", 1), false, lmp);
+      have[0] = true; iarg += 2;
+    } else if (key == "tail") {
+      p.tail_diameter = utils::numeric(FLERR, *value("tail", 1), false, lmp);
+      have[1] = true; iarg += 2;
+    } else if (key == "nose") {
+      p.nose_diameter = utils::numeric(FLERR, *value("nose", 1), false, lmp);
+      have[2] = true; iarg += 2;
+    } else if (key == "spheres") {
+      p.nspheres = utils::inumeric(FLERR, *value("spheres", 1), false, lmp);
+      have[3] = true; iarg += 2;
+    } else if (key == "density") {
+      p.density = utils::numeric(FLERR, *value("density", 1), false, lmp);
+      have[4] = true; iarg += 2;
+    } else if (key == "types") {
+      char **v = value("types", 3);
+      for (int k = 0; k < 3; ++k) types[k] = utils::inumeric(FLERR, v[k], false, lmp);
+      iarg += 4;
+    } else if (key == "file") {
+      file = *value("file", 1);
+      iarg += 2;
+    } else if (key == "taper_check") {
+      taper_check = utils::logical(FLERR, *value("taper_check", 1), false, lmp);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Rod_template: unknown keyword {}", key);
+    }
+  }
+  const char *names[5] = {"length", "tail", "nose", "spheres", "density"};
+  for (int k = 0; k < 5; ++k)
+    if (!have[k]) error->all(FLERR, "Rod_template: keyword {} is required", names[k]);
+  const std::string bad = ActiveGrain::rod_parameter_error(p);
+  if (!bad.empty()) error->all(FLERR, "Rod_template: {}", bad);
+  if (taper_check && p.nose_diameter > p.tail_diameter)
+    error->all(FLERR, "Rod_template: taper_check: nose diameter {} is wider than tail diameter {}",
+               p.nose_diameter, p.tail_diameter);
+  for (int k = 0; k < 3; ++k)
+    if (types[k] < 1 || types[k] > atom->ntypes)
+      error->all(FLERR, "Rod_template: types: atom type {} is not between 1 and {}", types[k], atom->ntypes);
+  if (types[0] == types[2] || types[0] == types[1] || types[2] == types[1])
+    error->all(FLERR, "Rod_template: types: tail, body and nose types must differ so the ends are identifiable");
+
+  ActiveGrain::RodGeometry g;
+  try {
+    g = ActiveGrain::make_rod_geometry(p);
+  } catch (std::invalid_argument &e) {
+    error->all(FLERR, "Rod_template: {} (spheres {})", e.what(), p.nspheres);
+  }
+
+  // Rod along +x (tail to nose), centre of mass at the origin. The header carries the solid's
+  // mass, COM and inertia so that molecule-based insertion uses them; the per-sphere masses
+  // already sum to the solid's mass and first moment.
+  if (comm->me == 0) {
+    FILE *fp = fopen(file.c_str(), "w");
+    if (!fp) error->one(FLERR, "Rod_template: cannot write {}: {}", file, utils::getsyserror());
+    const int n = p.nspheres;
+    fmt::print(fp, "# rod_template {}: L {} tail {} nose {} spheres {} density {}\n\n", id, p.length,
+               p.tail_diameter, p.nose_diameter, n, p.density);
+    fmt::print(fp, "{} atoms\n{:.17g} mass\n0 0 0 com\n{:.17g} {:.17g} {:.17g} 0 0 0 inertia\n", n,
+               g.mass, g.inertia_axial, g.inertia_transverse, g.inertia_transverse);
+    fmt::print(fp, "\nCoords\n\n");
+    for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g} 0 0\n", i + 1, g.spheres[i].x - g.com);
+    fmt::print(fp, "\nTypes\n\n");
+    for (int i = 0; i < n; ++i)
+      fmt::print(fp, "{} {}\n", i + 1, i == 0 ? types[0] : (i == n - 1 ? types[2] : types[1]));
+    fmt::print(fp, "\nDiameters\n\n");
+    for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g}\n", i + 1, 2.0 * g.spheres[i].radius);
+    fmt::print(fp, "\nMasses\n\n");
+    for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g}\n", i + 1, g.spheres[i].mass);
+    fclose(fp);
+    utils::logmesg(lmp,
+                   "Rod_template {}: mass {:.6g}, COM {:.6g} from tail, inertia axial {:.6g} "
+                   "transverse {:.6g}, {} spheres (envelope dip {:.3g}), written to {}\n",
+                   id, g.mass, g.com, g.inertia_axial, g.inertia_transverse, n, g.max_envelope_dip, file);
+  }
+  MPI_Barrier(world);
+  input->one(fmt::format("molecule {} {}", id, file));
+}

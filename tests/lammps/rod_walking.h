@@ -1,0 +1,65 @@
+// Shared by the walking tests: runs examples/single-rod/in.single-rod (rods between vibrating
+// plates, paper parameters unless overridden) and measures each rod's mean velocity along its
+// own polar axis in the plate plane, <v_cm . p_xy / |p_xy|>, inside LAMMPS.
+#pragma once
+
+#include "lammps.h"
+#include "library.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rod_walking {
+
+constexpr double SETTLE = 0.1;     // s: let the rods find the plates before measuring
+constexpr double MEASURE = 2.0;    // s
+
+// Commands: every index variable of the deck set by `vars`, then the deck, then per-rod speed
+// along the axis averaged every 10 steps over MEASURE seconds. Rod k is molecule k.
+inline std::string deck(const std::map<std::string, std::string> &vars, int nrods)
+{
+  std::string cmd;
+  for (const auto &[name, value] : vars) cmd += "variable " + name + " index " + value + "\n";
+  cmd += "variable time index " + std::to_string(SETTLE) + "\n";
+  cmd += "include " ACTIVEGRAIN_SOURCE_DIR "/examples/single-rod/in.single-rod\n"
+         "undump bodies\nthermo 0\n";
+  std::string values;
+  for (int k = 1; k <= nrods; ++k) {
+    const std::string K = std::to_string(k);
+    cmd += "group rod" + K + " molecule " + K + "\n"
+           "compute polar" + K + " rod" + K + " reduce ave f_rods[1] f_rods[2]\n"
+           "variable along" + K + " equal (vcm(rod" + K + ",x)*c_polar" + K + "[1]+vcm(rod" + K +
+        ",y)*c_polar" + K + "[2])/sqrt(c_polar" + K + "[1]^2+c_polar" + K + "[2]^2)\n";
+    values += " v_along" + K;
+  }
+  // Running average of samples every 10 steps from now on.
+  cmd += "variable nmeasure equal 10*round(" + std::to_string(MEASURE) + "/dt/10)\n"
+         "fix speed all ave/time 10 1 10" + values + " ave running\n"
+         "run ${nmeasure}\n";
+  return cmd;
+}
+
+// Mean speed along the own axis of each rod (m/s), the same on every rank.
+inline std::vector<double> speeds(void *lmp, int nrods)
+{
+  std::vector<double> v;
+  for (int k = 0; k < nrods; ++k)
+  {
+    // fix ave/time of one value is a scalar, of several a vector.
+    auto *value = (double *) lammps_extract_fix(lmp, "speed", LMP_STYLE_GLOBAL,
+                                                nrods == 1 ? LMP_TYPE_SCALAR : LMP_TYPE_VECTOR, k, 0);
+    v.push_back(value ? *value : 0.0);
+    lammps_free(value);
+  }
+  return v;
+}
+
+inline double mean(const std::vector<double> &v)
+{
+  double s = 0;
+  for (double x : v) s += x;
+  return s / v.size();
+}
+
+}    // namespace rod_walking

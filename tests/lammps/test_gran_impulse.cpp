@@ -1,0 +1,236 @@
+// pair gran/impulse with fix wall/impulse and fix wall/impulse/region in LAMMPS: measured
+// restitution of bead-bead, bead-plate and bead-side-wall impacts, energy input by a vibrating
+// plate, and the errors for bad input.
+#include "lammps_fixture.h"
+
+#include "atom.h"
+
+#include <cmath>
+#include <string>
+
+namespace {
+
+// A box of 10 x 10 x 2 mm, SI units, 1 mm aluminium beads. z is bounded (fixed).
+const char *const kBox = R"(
+units si
+atom_style sphere
+atom_modify map array
+boundary p p f
+region box block 0 0.01 0 0.01 0 0.002
+create_box 2 box
+comm_modify vel yes
+neighbor 0.0002 bin
+timestep 1e-5
+)";
+
+const char *const kPair = R"(
+pair_style gran/impulse
+pair_coeff * * 0.3 0.05
+)";
+
+}    // namespace
+
+class GranImpulse : public LammpsTest {
+ protected:
+  void SetUp() override
+  {
+    LammpsTest::SetUp();
+    command(kBox);
+  }
+  void bead(double x, double y, double z, double vx, double vy, double vz, int type = 1)
+  {
+    command(fmt("create_atoms {} single {} {} {}", type, x, y, z));
+    const int id = (int) lmp->atom->natoms;
+    command(fmt("set atom {} diameter 0.001\nset atom {} density 2700", id, id));
+    command(fmt("velocity all set NULL NULL NULL\nset atom {} vx {} vy {} vz {}", id, vx, vy, vz));
+  }
+  // Value of an equal-style expression (the fixture's equal_variable() reads thermo keywords).
+  double value(const std::string &expr)
+  {
+    command("variable agtest_value equal " + expr);
+    auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+    const double result = *p;
+    lammps_free(p);
+    return result;
+  }
+  double v(int id, char c) { return value(fmt("v{}[{}]", c, id)); }
+  template <class... Args> static std::string fmt(const std::string &f, Args... args)
+  {
+    return fmt::format(f, args...);
+  }
+};
+
+TEST_F(GranImpulse, TwoBeadsReboundWithTheCoefficientOfRestitution)
+{
+  for (double dy : {0.0, 0.0002}) {    // head-on, and off-centre so that friction acts too
+    for (double e : {0.0, 0.3, 0.9}) {
+      command("delete_atoms group all");
+      bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0);
+      bead(0.006, 0.005 + dy, 0.001, -0.05, 0.0, 0.0);
+      command(kPair);
+      command(fmt("pair_coeff * * {} 0.05", e));
+      command("fix nve all nve/sphere");
+      const int n1 = (int) lmp->atom->natoms - 1, n2 = n1 + 1;
+      command("run 3000");
+      // Normal at impact: the line of centres when they touch.
+      const double nx = std::sqrt(0.001 * 0.001 - dy * dy) / 0.001, ny = dy / 0.001;
+      const double un_before = (-0.05 - 0.1) * nx;
+      const double un_after = (v(n2, 'x') - v(n1, 'x')) * nx + (v(n2, 'y') - v(n1, 'y')) * ny;
+      // Off-centre, the predictive contact acts up to one step's approach (1.5 um) before
+      // touching, so its normal differs from the touching one by ~1e-4.
+      const double tolerance = dy == 0.0 ? 1e-12 : 1e-3 * std::fabs(un_before);
+      EXPECT_NEAR(un_after, -e * un_before, tolerance) << "e=" << e << " dy=" << dy;
+      EXPECT_NEAR(v(n1, 'x') + v(n2, 'x'), 0.05, 1e-12);    // momentum (equal masses)
+      EXPECT_NEAR(v(n1, 'y') + v(n2, 'y'), 0.0, 1e-12);
+      command("unfix nve");
+    }
+  }
+}
+
+TEST_F(GranImpulse, BeadDroppedOnAStillPlateBouncesWithE)
+{
+  bead(0.005, 0.005, 0.0008, 0.0, 0.0, -0.1);
+  command(kPair);
+  command("fix nve all nve/sphere\n"
+          "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01\n"
+          "fix impulse all ave/time 1 1000 1000 f_plates[6]");
+  command("run 1000");
+  EXPECT_NEAR(v(1, 'z'), 0.03, 1e-12);
+  // The plate reports the impulse it delivered, m (1 + e) v in all.
+  const double m = 2700 * M_PI / 6 * 1e-9;
+  EXPECT_NEAR(1000 * value("f_impulse"), m * 1.3 * 0.1, 1e-12 * m);
+}
+
+TEST_F(GranImpulse, BeadBetweenStillPlatesUnderGravityKeepsBouncingWithE)
+{
+  // Under gravity the rebound speed is e times the impact speed within 2 per cent at dt 1e-5 s.
+  bead(0.005, 0.005, 0.0015, 0.0, 0.0, 0.0);
+  command(kPair);
+  command("fix nve all nve/sphere\n"
+          "fix g all gravity 9.81 vector 0 0 -1\n"
+          "fix plates all wall/impulse zlo 0.0 e 0.5 mu 0.01 gap 0.002 lid fixed\n"
+          );
+  // Fall 1 mm: impact speed sqrt(2 g h).
+  double vmin = 0, vafter = 0;
+  for (int step = 0; step < 2000; ++step) {
+    command("run 1 post no");
+    const double vz = v(1, 'z');
+    if (vz < vmin) vmin = vz;
+    if (vz > 0) { vafter = vz; break; }
+  }
+  ASSERT_LT(vmin, -0.1);
+  EXPECT_NEAR(vafter / -vmin, 0.5, 0.01);
+}
+
+TEST_F(GranImpulse, BeadOnVibratingPlateGainsEnergy)
+{
+  // (2 pi f)^2 A = 6.4 g: a bead resting on the plate is thrown up.
+  bead(0.005, 0.005, 0.0005, 0.0, 0.0, 0.0);
+  command(kPair);
+  command("fix nve all nve/sphere\n"
+          "fix g all gravity 9.81 vector 0 0 -1\n"
+          "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 0.00004 200 0\n"
+          "compute ke all ke\n"
+          "run 0");
+  EXPECT_EQ(value("c_ke"), 0.0);
+  double zmax = 0, kemax = 0;
+  for (int k = 0; k < 40; ++k) {
+    command("run 50 post no");
+    zmax = std::max(zmax, value("z[1]"));
+    kemax = std::max(kemax, value("c_ke"));
+  }
+  // Thrown clear above the plate's highest point (z = r + A).
+  EXPECT_GT(zmax, 0.0005 + 0.00004 + 0.00001);
+  EXPECT_GT(kemax, 0.0);
+}
+
+TEST_F(GranImpulse, BeadHitsSideWallRegionsWithE)
+{
+  struct Case {
+    std::string region;    // the side wall
+    double x, y, vx, vy;   // bead start and velocity; it hits the wall head-on
+    int steps = 6000;      // long enough to hit once, short enough not to hit again
+  };
+  const Case cases[] = {
+      {"region wall block 0.001 0.009 0.001 0.009 INF INF side in", 0.005, 0.005, 0.1, 0.0},
+      {"region wall cylinder z 0.005 0.005 0.004 INF INF side in", 0.005, 0.005, 0.0, -0.1},
+      {"region wall cylinder z 0.005 0.005 0.0015 INF INF side out", 0.008, 0.005, -0.1, 0.0},
+      {"region outer cylinder z 0.005 0.005 0.004 INF INF side in\n"
+       "region inner cylinder z 0.005 0.005 0.0015 INF INF side out\n"
+       "region wall intersect 2 outer inner", 0.005, 0.0080, 0.0, 0.1, 3000},
+      {"region lobe1 cylinder z 0.004 0.005 0.0025 INF INF side in\n"
+       "region lobe2 cylinder z 0.006 0.005 0.0025 INF INF side in\n"
+       "region wall union 2 lobe1 lobe2", 0.006, 0.005, 0.1, 0.0},
+  };
+  for (const Case &c : cases) {
+    command("clear");
+    command("plugin load " ACTIVEGRAIN_PLUGIN_FILE);
+    command(kBox);
+    command(c.region);
+    bead(c.x, c.y, 0.001, c.vx, c.vy, 0.0);
+    command(kPair);
+    command("fix nve all nve/sphere\n"
+            "fix side all wall/impulse/region wall e 0.4 mu 0.1");
+    command(fmt("run {}", c.steps));
+    // Head-on: the rebound is e times the incoming speed, reversed.
+    EXPECT_NEAR(v(1, 'x'), -0.4 * c.vx, 1e-9) << c.region;
+    EXPECT_NEAR(v(1, 'y'), -0.4 * c.vy, 1e-9) << c.region;
+  }
+}
+
+TEST_F(GranImpulse, PerTypeWallCoefficients)
+{
+  bead(0.003, 0.005, 0.0008, 0.0, 0.0, -0.1, 1);
+  bead(0.007, 0.005, 0.0008, 0.0, 0.0, -0.1, 2);
+  command(kPair);
+  command("fix nve all nve/sphere\n"
+          "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 type 2 0.6 0.03\n"
+          "run 1000");
+  EXPECT_NEAR(v(1, 'z'), 0.03, 1e-12);
+  EXPECT_NEAR(v(2, 'z'), 0.06, 1e-12);
+}
+
+TEST_F(GranImpulse, BadInputGivesClearErrors)
+{
+  bead(0.005, 0.005, 0.001, 0, 0, 0);
+  command("pair_style gran/impulse");
+  EXPECT_NE(error_of("pair_coeff * * 1.2 0.1").find("Pair gran/impulse: restitution"), std::string::npos);
+  EXPECT_NE(error_of("pair_coeff * * 0.3 -0.1").find("Pair gran/impulse: friction"), std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse sweeps 0").find("sweeps"), std::string::npos);
+  command(kPair);
+  EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),
+            std::string::npos);
+  EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5 mu -1").find("Fix wall/impulse: friction"),
+            std::string::npos);
+  EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5").find("Fix wall/impulse: no restitution"),
+            std::string::npos);
+  EXPECT_NE(error_of("fix w all wall/impulse/region nowhere e 0.5 mu 0.1").find("region nowhere does not exist"),
+            std::string::npos);
+  // A time step too large for the vibration: 200 Hz needs dt <= 2.5e-4 s.
+  command("fix nve all nve/sphere\nfix w all wall/impulse zlo 0 e 0.5 mu 0.1 vibrate 0.00004 200 0\ntimestep 1e-3");
+  EXPECT_NE(error_of("run 1").find("Fix wall/impulse: time step"), std::string::npos);
+  command("timestep 1e-5\nrun 1");
+  // Ghost velocities are required.
+  command("comm_modify vel no");
+  EXPECT_NE(error_of("run 1").find("comm_modify vel yes"), std::string::npos);
+  command("comm_modify vel yes\nunfix w");
+  // Wall fixes need the pair style.
+  command("pair_style zero 0.001\npair_coeff * *\nfix w all wall/impulse zlo 0 e 0.5 mu 0.1");
+  EXPECT_NE(error_of("run 1").find("Fix wall/impulse requires pair_style gran/impulse"), std::string::npos);
+}
+
+TEST_F(GranImpulse, WallOnPeriodicDimensionIsAnError)
+{
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command("units si\natom_style sphere\nboundary p p p\nregion box block 0 0.01 0 0.01 0 0.002\ncreate_box 1 box");
+  EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5 mu 0.1").find("periodic z"), std::string::npos);
+}
+
+TEST_F(GranImpulse, AtomStyleWithoutRadiusIsAnError)
+{
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command("units si\natom_style atomic\nregion box block 0 0.01 0 0.01 0 0.002\ncreate_box 1 box\n"
+          "create_atoms 1 single 0.005 0.005 0.001\nmass 1 1e-6\ncomm_modify vel yes\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05");
+  EXPECT_NE(error_of("run 1").find("Pair gran/impulse requires atom attributes radius"), std::string::npos);
+}
