@@ -157,9 +157,11 @@ TEST_F(RigidRodTest, ProviderGivesSolidRodStateToOwnedAndGhostAtoms)
     // the atom, and equal to the true COM up to a whole box image.
     const Vec3 xi(lmp->atom->x[i]);
     EXPECT_LT(ActiveGrain::norm(b.com - xi), LENGTH);
-    double d[3] = {b.com.x - xcm.x, b.com.y - xcm.y, b.com.z - xcm.z};
-    lmp->domain->minimum_image(d[0], d[1], d[2]);
-    EXPECT_NEAR(ActiveGrain::norm(Vec3(d)), 0.0, 1e-12);
+    double com[3], true_com[3], true_com_image[3];
+    b.com.store(com);
+    xcm.store(true_com);
+    lmp->domain->closest_image(com, true_com, true_com_image);
+    EXPECT_NEAR(ActiveGrain::norm(b.com - Vec3(true_com_image)), 0.0, 1e-12);
     // World inverse inertia: 1/I_axial along the polar axis, 1/I_transverse across it.
     EXPECT_NEAR(ActiveGrain::norm(b.inv_inertia * polar - polar / g.inertia_axial) * g.inertia_axial, 0.0, 1e-8);
     EXPECT_NEAR(ActiveGrain::norm(b.inv_inertia * across - across / g.inertia_transverse) * g.inertia_transverse, 0.0, 1e-8);
