@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Pictures and profiles from a channel run, with python/activegrain (lengths in bead diameters).
+#   examples/channel/analyse.sh OUTDIR      (OUTDIR holds channel.dump from in.channel*)
+set -euo pipefail
+out=${1:?usage: analyse.sh OUTDIR}
+here=$(cd "$(dirname "$0")" && pwd)
+export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
+ag() { /usr/bin/python3 -m activegrain "$@"; }
+dump="$out/channel.dump"
+common=(--geometry channel --length-unit 1e-3)
+ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
+ag profile "$dump" "${common[@]}" --coord x --species all --plot "$out/profile.png" > "$out/profile.txt"
+ag kymograph "$dump" "${common[@]}" --coord x -o "$out/kymograph.png"
+ag phase "$dump" "${common[@]}" --every 10 > "$out/phase.txt"
+ag polar "$dump" "${common[@]}" --every 10 > "$out/polar.txt"
