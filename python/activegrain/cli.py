@@ -1,0 +1,212 @@
+"""Command line: ``python3 -m activegrain {profile,polar,phase,motility,snapshot,kymograph,movie,theory} ...``.
+
+Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
+pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
+``--length-unit`` (e.g. 1e-3 to work in bead diameters from a dump in metres) and
+``--timestep`` (time per MD step).
+"""
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from . import analysis, io, motility, theory
+from .geometry import geometry_from_box
+
+
+def _add_dump_args(p, frames=True):
+    p.add_argument("dump", help="LAMMPS text dump (id mol type radius x y z [vx vy vz])")
+    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
+    p.add_argument("--centre", type=float, nargs=2, help="annulus centre (default: box centre)")
+    p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius")
+    p.add_argument("--r-out", type=float, help="annulus outer radius")
+    p.add_argument("--length-unit", type=float, default=1.0, help="divide lengths by this")
+    p.add_argument("--timestep", type=float, default=1.0, help="time per MD step")
+    if frames:
+        p.add_argument("--frame", type=int, default=None,
+                       help="only this frame (python index, -1 = last); default all")
+        p.add_argument("--every", type=int, default=None, help="every n-th frame")
+
+
+def _frames(args):
+    kw = dict(length_unit=args.length_unit, timestep=args.timestep)
+    if getattr(args, "frame", None) is not None:
+        return [io.read_frame(args.dump, args.frame, **kw)]
+    return list(io.read_dump(args.dump, every=getattr(args, "every", None), **kw))
+
+
+def _geometry(args, frame):
+    u = args.length_unit
+    return geometry_from_box(frame.box, args.geometry,
+                             None if args.centre is None else tuple(np.asarray(args.centre) / u),
+                             args.r_in / u, None if args.r_out is None else args.r_out / u)
+
+
+def _print_table(rows, out):
+    keys = list(rows[0])
+    out.write(" ".join(keys) + "\n")
+    for r in rows:
+        out.write(" ".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
+
+
+def cmd_profile(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species) for fr in frames]
+    mean = np.mean([p.fraction for p in profiles], axis=0)
+    rows = [{args.coord: float(c), "area_fraction": float(v)} for c, v in zip(profiles[0].centres, mean)]
+    _print_table(rows, out)
+    if args.plot:
+        from . import plotting
+        avg = analysis.Profile(args.coord, args.species, profiles[0].edges, mean)
+        plotting.plot_profiles([avg], args.plot, labels=[f"{args.species}, mean of {len(frames)} frame(s)"])
+
+
+def cmd_polar(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    rows = []
+    for fr in frames:
+        row = {"step": fr.step, "time": fr.time}
+        row.update(analysis.polarization(fr, geom))
+        row["gradient_alignment"] = analysis.gradient_alignment(fr, geom)[1]
+        rows.append(row)
+    _print_table(rows, out)
+
+
+def cmd_phase(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    rows = []
+    for fr in frames:
+        res = analysis.classify_phase(fr, geom)
+        row = {"step": fr.step, "phase": res.phase}
+        row.update({k: v for k, v in res.observables.items() if k != "layer_coord"})
+        rows.append(row)
+    _print_table(rows, out)
+
+
+def cmd_motility(args, out):
+    tracks = motility.rod_tracks(_frames(args))
+    out.write(json.dumps(motility.motility_summary(tracks), indent=1) + "\n")
+
+
+def cmd_snapshot(args, out):
+    from . import plotting
+    fr = io.read_frame(args.dump, args.frame if args.frame is not None else -1,
+                       length_unit=args.length_unit, timestep=args.timestep)
+    plotting.snapshot(fr, _geometry(args, fr), args.output)
+    out.write(f"wrote {args.output}\n")
+
+
+def cmd_kymograph(args, out):
+    from . import plotting
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, "beads") for fr in frames]
+    plotting.kymograph([fr.time for fr in frames], profiles, args.output)
+    out.write(f"wrote {args.output}\n")
+
+
+def cmd_movie(args, out):
+    from . import plotting
+    frames = _frames(args)
+    plotting.movie(frames, args.output, _geometry(args, frames[0]), fps=args.fps)
+    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+
+
+def cmd_theory(args, out):
+    if args.model == "growth":
+        names = [f for f in theory.LinearParameters.__dataclass_fields__]
+        p = theory.LinearParameters(**{n: getattr(args, n) for n in names})
+        k = np.linspace(0, args.k_max or 2 * np.sqrt(p.a / p.K), args.n_k)
+        lam = theory.growth_rates(k, p, expanded=not args.full)
+        out.write(f"condensation (A alpha rho0 + B u0 sigma0 > 0): {theory.condensation_condition(p)}\n")
+        out.write(f"non-reciprocity condition: {theory.nonreciprocity_condition(p)}\n")
+        ks, ls = theory.fastest_mode(p, args.k_max, expanded=not args.full)
+        out.write(f"fastest mode: k = {ks:.6g}, Re lambda = {ls:.6g}\n")
+        if args.plot:
+            from . import plotting
+            plotting.plot_growth_rates(k, lam, args.plot)
+    else:
+        eos = theory.HendersonEOS(T=args.T, d=args.d)
+        pf = theory.point_force(args.f, args.rho0, args.gamma, args.v0, eos)
+        out.write(f"rho+ = {pf.rho_plus:.8g}  (area fraction {float(eos.eta(pf.rho_plus)):.6g})\n")
+        out.write(f"rho- = {pf.rho_minus:.8g}\nl+ = {pf.ell_plus:.8g}\n")
+        if args.plot:
+            from . import plotting
+            x = np.linspace(0, 5 * pf.ell_plus, 400)
+            plotting.plot_point_force(x, {"eq. 5 (exponential)": pf.profile(x),
+                                          "steady eq. 3 (Henderson)": theory.steady_profile(x, pf, eos)},
+                                      pf, args.plot)
+
+
+def build_parser():
+    ap = argparse.ArgumentParser(prog="python3 -m activegrain", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("profile", help="area-fraction profile (mean over the frames)")
+    _add_dump_args(p)
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
+    p.add_argument("--bins", type=int, default=50)
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("--plot", help="also save a plot (png/pdf)")
+    p.set_defaults(func=cmd_profile)
+
+    p = sub.add_parser("polar", help="rod polarization, velocity order, alignment with the bead gradient")
+    _add_dump_args(p)
+    p.set_defaults(func=cmd_polar)
+
+    p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed")
+    _add_dump_args(p)
+    p.set_defaults(func=cmd_phase)
+
+    p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
+    _add_dump_args(p)
+    p.set_defaults(func=cmd_motility)
+
+    p = sub.add_parser("snapshot", help="draw one frame")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_snapshot)
+
+    p = sub.add_parser("kymograph", help="bead profile against time")
+    _add_dump_args(p)
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
+    p.add_argument("--bins", type=int, default=100)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_kymograph)
+
+    p = sub.add_parser("movie", help="animate the frames (.gif; .mp4 needs ffmpeg)")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.add_argument("--fps", type=int, default=10)
+    p.set_defaults(func=cmd_movie)
+
+    p = sub.add_parser("theory", help="linear stability (growth) or moving point force (pointforce)")
+    p.add_argument("model", choices=["growth", "pointforce"])
+    for name, fld in theory.LinearParameters.__dataclass_fields__.items():
+        p.add_argument(f"--{name}", type=float, default=fld.default, help="growth: model parameter")
+    p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default 2 sqrt(a/K))")
+    p.add_argument("--n-k", type=int, default=400)
+    p.add_argument("--full", action="store_true", help="growth: unexpanded 1/(a + K k^2) response")
+    p.add_argument("--f", type=float, default=1.0, help="pointforce: force f")
+    p.add_argument("--gamma", type=float, default=1.0, help="pointforce: drag per bead")
+    p.add_argument("--v0", type=float, default=1.0, help="pointforce: speed of the force")
+    p.add_argument("--T", type=float, default=1.0, help="pointforce: temperature of the hard-disk EOS")
+    p.add_argument("--d", type=float, default=1.0, help="pointforce: disc diameter")
+    p.add_argument("--plot", help="save a plot")
+    p.set_defaults(func=cmd_theory)
+    return ap
+
+
+def main(argv=None, out=None):
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args, out or sys.stdout)
+    except (ValueError, RuntimeError, OSError) as e:
+        sys.stderr.write(f"activegrain {args.command}: {e}\n")
+        return 1
+    return 0

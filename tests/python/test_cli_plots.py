@@ -1,0 +1,92 @@
+"""Command line and figures on synthetic dumps."""
+import io
+import shutil
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from activegrain import plotting, synthetic as S, write_dump, read_frame, geometry_from_box
+from activegrain.cli import main
+
+
+@pytest.fixture(scope="module")
+def condensed_dump(tmp_path_factory):
+    path = tmp_path_factory.mktemp("dumps") / "condensed.dump"
+    frames = []
+    for i in range(3):
+        fr = S.phase_configuration("condensed")
+        fr.pos[:, :2] = fr.box.wrap(fr.pos[:, :2] + [2.0 * i, 0.0])
+        fr.step = 1000 * i
+        frames.append(fr.scaled(1e-3))  # in metres, like the simulations
+    write_dump(path, frames)
+    return str(path)
+
+
+def run(argv):
+    out = io.StringIO()
+    rc = main(argv, out)
+    return rc, out.getvalue()
+
+
+def test_profile_command(condensed_dump, tmp_path):
+    png = tmp_path / "p.png"
+    rc, text = run(["profile", condensed_dump, "--length-unit", "1e-3", "--bins", "31", "--frame", "0",
+                    "--plot", str(png)])
+    assert rc == 0
+    rows = np.array([l.split() for l in text.splitlines()[1:]], float)
+    assert rows.shape == (31, 2)
+    # bins of 4 d: x in [36, 92] is the close-packed lattice (pi/4) in frame 0
+    dense = rows[(rows[:, 0] > 36) & (rows[:, 0] < 92), 1]
+    assert np.allclose(dense, np.pi / 4, rtol=1e-6)
+    assert png.stat().st_size > 1000
+
+
+def test_phase_and_polar_commands(condensed_dump):
+    rc, text = run(["phase", condensed_dump, "--length-unit", "1e-3"])
+    assert rc == 0
+    lines = text.splitlines()
+    assert len(lines) == 4 and all(l.split()[1] == "condensed" for l in lines[1:])
+    rc, text = run(["polar", condensed_dump, "--length-unit", "1e-3", "--frame", "-1"])
+    head, row = text.splitlines()
+    vals = dict(zip(head.split(), row.split()))
+    assert float(vals["P"]) == pytest.approx(1.0)
+    assert vals["step"] == "2000"
+
+
+def test_snapshot_movie_kymograph(condensed_dump, tmp_path):
+    for cmd, name in (("snapshot", "s.png"), ("movie", "m.gif"), ("kymograph", "k.png")):
+        rc, text = run([cmd, condensed_dump, "--length-unit", "1e-3", "-o", str(tmp_path / name)])
+        assert rc == 0, text
+    gif = Image.open(tmp_path / "m.gif")
+    assert gif.n_frames == 3
+    if shutil.which("ffmpeg") is None:  # no encoder: a clear error, not a crash
+        rc, _ = run(["movie", condensed_dump, "--length-unit", "1e-3", "-o", str(tmp_path / "m.mp4")])
+        assert rc == 1
+
+
+def test_theory_commands(tmp_path):
+    rc, text = run(["theory", "growth", "--D_rho_sigma", "0.5", "--B", "-0.1", "--plot", str(tmp_path / "g.png")])
+    assert rc == 0
+    assert "condensation (A alpha rho0 + B u0 sigma0 > 0): True" in text
+    assert "non-reciprocity condition: True" in text
+    rc, text = run(["theory", "pointforce", "--f", "2", "--rho0", "0.6"])
+    assert rc == 0
+    assert float(text.split("rho+ = ")[1].split()[0]) == pytest.approx(0.7314170, rel=1e-6)
+
+
+def test_errors_are_reported_not_raised(tmp_path):
+    bad = tmp_path / "bad.dump"
+    bad.write_text("nothing here\n" * 10)
+    rc, _ = run(["profile", str(bad)])
+    assert rc == 1
+    rc, _ = run(["phase", str(tmp_path / "missing.dump")])
+    assert rc == 1
+
+
+def test_snapshot_draws_periodic_images_of_straddling_rods():
+    box = S.square_box(20)
+    fr = S.make_frame(box, [(5.0, 5.0)], 0.5, [(0.5, 10.0), (10.0, 10.0)], [(1, 0), (0, 1)])
+    fig = plotting.snapshot(fr, geometry_from_box(box))
+    polys = fig.axes[0].collections[1]
+    assert len(polys.get_paths()) == 3  # the straddling rod twice, the other once

@@ -1,0 +1,107 @@
+"""Polarization, rods vs the bead gradient, layer sides and the phase classifier."""
+import numpy as np
+import pytest
+
+from activegrain import analysis as A, synthetic as S
+from activegrain.geometry import Annulus, Box, geometry_from_box
+
+
+def _rods_frame(axes, rng, box=None):
+    box = box or S.square_box(200)
+    n = len(axes)
+    centres = rng.uniform(0, box.lengths[0], (n, 2))
+    return S.make_frame(box, [], 0.5, centres, axes)
+
+
+def test_aligned_rods_have_full_polarization_random_rods_none():
+    rng = np.random.default_rng(0)
+    fr = _rods_frame(np.tile([np.cos(0.7), np.sin(0.7)], (50, 1)), rng)
+    pol = A.polarization(fr)
+    assert pol["P"] == pytest.approx(1.0)
+    assert (pol["Px"], pol["Py"]) == pytest.approx((np.cos(0.7), np.sin(0.7)))
+    ang = rng.uniform(0, 2 * np.pi, 2000)
+    fr = _rods_frame(np.column_stack([np.cos(ang), np.sin(ang)]), rng)
+    assert A.polarization(fr)["P"] < 3 / np.sqrt(2000)
+    # nematic but not polar: half the rods reversed
+    axes = np.tile([1.0, 0.0], (100, 1))
+    axes[::2] *= -1
+    assert A.polarization(_rods_frame(axes, rng))["P"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_velocity_order_and_tangential_polarization():
+    box = Box((-10.0, -10.0, 0.0), (10.0, 10.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 3.0, 9.0)
+    ang = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    centres = 6 * np.column_stack([np.cos(ang), np.sin(ang)])
+    e_theta = np.column_stack([-np.sin(ang), np.cos(ang)])
+    fr = S.make_frame(box, [(0.0, 7.5)], 0.5, centres, e_theta, bead_vel=[(1.0, 0.0)], rod_vel=2 * e_theta)
+    pol = A.polarization(fr, ann)
+    assert pol["P_tangential"] == pytest.approx(1.0)
+    assert pol["P"] == pytest.approx(0.0, abs=1e-12)  # all around the ring: no net vector
+    assert pol["bead_velocity_order"] == pytest.approx(1.0)
+    assert pol["rod_velocity_order"] == pytest.approx(0.0, abs=1e-12)
+    fr2 = S.make_frame(box, [], 0.5, centres, -e_theta)
+    assert A.polarization(fr2, ann)["P_tangential"] == pytest.approx(-1.0)
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_rods_relative_to_bead_gradient(sign):
+    rng = np.random.default_rng(2)
+    box = S.channel_box(120, 30)
+    # bead density rising along x: strips of decreasing lattice spacing
+    beads = np.concatenate([S.lattice_beads(x0, x0 + 24, 0, 30, a)
+                            for x0, a in zip(range(0, 120, 24), (3.0, 2.4, 2.0, 1.5, 1.2))])
+    centres, _ = S.random_rods(10, (30, 90, 4, 26), rng)
+    axes = np.tile([sign, 0.0], (10, 1))
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    cos, mean = A.gradient_alignment(fr, geometry_from_box(box), smoothing=3.0)
+    assert sign * mean > 0.8
+
+
+def test_layer_sides_measure_both_densities():
+    fr = S.phase_configuration("condensed")
+    layer = A.layer_sides(fr, geometry_from_box(fr.box))
+    assert layer.coord == "x" and layer.direction == 1
+    assert layer.position == pytest.approx(30.0, abs=0.1)
+    assert layer.fraction_in_layer == 1.0
+    assert layer.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)   # lattice spacing 1
+    assert layer.phi_behind == pytest.approx(np.pi / 16, rel=0.1)  # lattice spacing 2
+    # mirrored: rods point -x, the dense side is at -x
+    fr.pos[:, 0] = fr.box.wrap(np.column_stack([124.0 - fr.pos[:, 0], fr.pos[:, 1]]))[:, 0]
+    mirrored = A.layer_sides(fr, geometry_from_box(fr.box))
+    assert mirrored.direction == -1
+    assert mirrored.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed"])
+def test_classifier_recognises_constructed_phases(phase, seed):
+    fr = S.phase_configuration(phase, seed=seed)
+    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == phase
+
+
+def test_classifier_thresholds_are_what_decides():
+    fr = S.phase_configuration("flock")
+    g = geometry_from_box(fr.box)
+    P = A.classify_phase(fr, g).observables["P"]
+    strict = A.PhaseThresholds(polar_order=min(1.0, P + 0.01))
+    assert A.classify_phase(fr, g, strict).phase == "isotropic"
+
+
+def test_condensed_layer_in_an_annulus():
+    box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)
+    # a radial row of rods at theta = 0 pointing counter-clockwise; beads dense for 0 < theta < 2
+    radii = np.arange(16.0, 27.5, 1.15)
+    centres = np.column_stack([radii, np.zeros_like(radii)])
+    axes = np.tile([0.0, 1.0], (len(radii), 1))
+    pts = S.lattice_beads(-30, 30, -30, 30, 1.0)
+    r, th = ann.polar(pts)
+    inside = (r > 15.5) & (r < 27.5)
+    keep = inside & (((th > 0.15) & (th < 2.0)) | ((th > 2.0) & (np.arange(len(pts)) % 4 == 0)))
+    beads = S.remove_overlaps(pts[keep], box, centres, axes)
+    fr = S.make_frame(box, beads, 0.5, centres, axes)
+    res = A.classify_phase(fr, ann)
+    assert res.observables["layer_coord"] == "theta"
+    assert res.observables["phi_ahead"] > res.observables["phi_behind"] + 0.3
+    assert res.phase == "condensed"
