@@ -1,0 +1,165 @@
+"""Draw the figures of docs/python.rst from synthetic data.
+
+    python3 -m activegrain.docfigures docs/figures
+"""
+import os
+import sys
+
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from . import analysis as A, motility as M, plotting, synthetic as S, theory as T  # noqa: E402
+from .geometry import Annulus, Box, geometry_from_box  # noqa: E402
+
+
+def graded_beads(rng, x0, x1, y0, y1, phi_of_x, dy=1.04, jitter=0.02):
+    """Columns of beads (alternate columns offset by dy/2) spaced so that the local area
+    fraction follows ``phi_of_x``."""
+    cols, x = [], x0
+    k = 0
+    while x < x1:
+        phi = phi_of_x(x)
+        dx = max(np.pi * 0.25 / (phi * dy), np.sqrt(1.0 - (dy / 2) ** 2) + 2 * jitter + 1e-3)
+        ys = np.arange(y0 + 0.5 + (dy / 2) * (k % 2), y1 - 0.5, dy)
+        cols.append(np.column_stack([np.full(len(ys), x + dx / 2), ys]))
+        x += dx
+        k += 1
+    pts = np.concatenate(cols)
+    return pts + rng.uniform(-jitter, jitter, pts.shape)
+
+
+def condensed_channel(rng, shift=0.0, length=160.0, width=31.0):
+    """A rod monolayer at x = 30 + shift pushing beads: phi_b follows eq. 5's exponential
+    ahead (from 0.80 down to 0.45) and is 0.45 elsewhere."""
+    box = S.channel_box(length, width)
+    x_layer = 30.0
+    phi = lambda x: 0.45 + (0.80 - 0.45) * np.exp(-(x - x_layer - 3) / 25.0) if x > x_layer + 2.5 else 0.45
+    beads = graded_beads(rng, x_layer + 2.6, length + x_layer - 3, 0, width, phi)
+    beads = np.concatenate([beads, graded_beads(rng, 0.0, x_layer - 3.0, 0, width, lambda x: 0.45)])
+    beads = beads[beads[:, 0] < length]
+    ys = np.arange(1.0, width - 0.5, 1.15)
+    ang = rng.normal(0, 0.08, len(ys))
+    axes = np.column_stack([np.cos(ang), np.sin(ang)])
+    centres = np.column_stack([x_layer + rng.normal(0, 0.3, len(ys)), ys])
+    beads = S.remove_overlaps(beads, box, centres, axes)
+    xy = beads + [shift, 0.0]
+    return S.make_frame(box, xy, 0.5, centres + [shift, 0.0], axes)
+
+
+def main(outdir):
+    os.makedirs(outdir, exist_ok=True)
+    out = lambda name: os.path.join(outdir, name)
+    rng = np.random.default_rng(1)
+    fr = condensed_channel(rng)
+    g = geometry_from_box(fr.box)
+
+    plotting.snapshot(fr, g, out("snapshot.png"), title="condensed channel (synthetic)")
+    plt.close("all")
+
+    pb = A.area_fraction_profile(fr, g, "x", 40, "beads")
+    pr = A.area_fraction_profile(fr, g, "x", 40, "rods")
+    fig = plotting.plot_profiles([pb, pr], labels=["beads", "rods"])
+    fig.axes[0].set_title("area-fraction profiles along the channel")
+    fig.savefig(out("profile.png"), dpi=150)
+    plt.close("all")
+
+    xe, ye, phi = A.area_fraction_map(fr, g, (80, 15), "all")
+    fig, ax = plt.subplots(figsize=(8, 2.4))
+    m = ax.pcolormesh(xe, ye, phi.T, cmap="viridis", vmin=0, vmax=0.9)
+    fig.colorbar(m, ax=ax, label="area fraction (all)")
+    ax.set_aspect("equal")
+    fig.tight_layout()
+    fig.savefig(out("map.png"), dpi=150)
+    plt.close("all")
+
+    frames = [condensed_channel(np.random.default_rng(2 + i), shift=4.0 * i) for i in range(12)]
+    for i, f in enumerate(frames):
+        f.time, f.step = 10.0 * i, 1000 * i
+        f.pos[:, :2] = f.box.wrap(f.pos[:, :2])
+    profiles = [A.area_fraction_profile(f, g, "x", 40, "beads") for f in frames]
+    plotting.kymograph([f.time for f in frames], profiles, out("kymograph.png"))
+    plt.close("all")
+    plotting.movie(frames[::2], out("movie.gif"), g, fps=4, width=5)
+
+    box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)
+    pts = S.lattice_beads(-30, 30, -30, 30, 1.05)
+    r, th = ann.polar(pts)
+    keep = (r > 15.6) & (r < 27.4) & (((th > 0.2) & (th < 2.5)) | (rng.uniform(size=len(pts)) < 0.45))
+    radii = np.arange(16.1, 27.3, 1.15)
+    centres = np.column_stack([radii, np.zeros_like(radii)])
+    axes = np.tile([0.0, 1.0], (len(radii), 1))
+    afr = S.make_frame(box, S.remove_overlaps(pts[keep], box, centres, axes), 0.5, centres, axes)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4.6))
+    plotting.draw_snapshot(a1, afr, ann)
+    pt = A.area_fraction_profile(afr, ann, "theta", 36, "beads")
+    a2.step(pt.centres, pt.fraction, where="mid", label="beads")
+    a2.set_xlabel(r"$\theta$ (rad)")
+    a2.set_ylabel("area fraction")
+    lay = A.layer_sides(afr, ann)
+    a2.set_title(f"ahead {lay.phi_ahead:.2f}, behind {lay.phi_behind:.2f}")
+    fig.tight_layout()
+    fig.savefig(out("annulus.png"), dpi=130)
+    plt.close("all")
+
+    fig, axs = plt.subplots(4, 1, figsize=(8, 9.5))
+    for ax, phase in zip(axs, ("isotropic", "flock", "segregated", "condensed")):
+        pf = S.phase_configuration(phase, seed=3)
+        res = A.classify_phase(pf, geometry_from_box(pf.box))
+        plotting.draw_snapshot(ax, pf, geometry_from_box(pf.box))
+        o = res.observables
+        ax.set_title(f"built as {phase}: classified {res.phase}  (P={o['P']:.2f}, "
+                     f"S={o['segregation']:.2f}, layer {o['layer_fraction']:.2f}, "
+                     f"contrast {o['layer_contrast']:.2f})", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out("phases.png"), dpi=120)
+    plt.close("all")
+
+    cos_rng = np.random.default_rng(5)
+    walks = [S.persistent_walk(2000, 0.02, 3.6, 2.0, cos_rng) for _ in range(30)]
+    tracks = M.RodTracks(walks[0][0], np.arange(30), np.stack([w[1] for w in walks], 1),
+                         np.stack([w[2] for w in walks], 1))
+    lags, msd = M.msd(tracks.centre, 800)
+    v, tau = M.fit_persistent_walk(lags * 0.02, msd)
+    lc, C = M.orientation_correlation(tracks.axis, 800)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    a1.loglog(lags[1:] * 0.02, msd[1:], "o", ms=2, label="measured")
+    a1.loglog(lags[1:] * 0.02, M.persistent_walk_msd(lags[1:] * 0.02, v, tau), label=f"fit v={v:.2f}, tau={tau:.2f}")
+    a1.set_xlabel("lag time (s)")
+    a1.set_ylabel("MSD (mm$^2$)")
+    a1.legend()
+    a2.plot(lc * 0.02, C, label="<p(t).p(0)>")
+    tp = M.persistence_time(lc * 0.02, C)
+    a2.plot(lc * 0.02, np.exp(-lc * 0.02 / tp), "--", label=f"exp(-t/{tp:.2f})")
+    a2.set_xlabel("lag time (s)")
+    a2.legend()
+    fig.suptitle("synthetic rods: v = 3.6 mm/s, tau = 2 s")
+    fig.tight_layout()
+    fig.savefig(out("motility.png"), dpi=130)
+    plt.close("all")
+
+    p = T.LinearParameters(rho0=1.0, sigma0=0.05, D_rho=0.02, D_sigma=0.0, D_rho_sigma=0.5,
+                           D_sigma_rho=0.0, alpha=1.0, u0=1.0, A=1.0, B=-0.1, a=10.0, K=1.0)
+    k = np.linspace(0, 2 * np.sqrt(p.a / p.K), 300)
+    plotting.plot_growth_rates(k, T.growth_rates(k, p), out("growth_rates.png"),
+                               title="unstable and non-reciprocal: travelling modes")
+    plt.close("all")
+
+    eos = T.HendersonEOS()
+    pfc = T.point_force(2.0, 0.6, 1.0, 1.0, eos)
+    x, rho = T.solve_moving_force(2.0, 0.6, 1.0, 1.0, eos, behind=10.0, ahead=100.0, n=1100)
+    xa = np.linspace(0, 100, 400)
+    fig = plotting.plot_point_force(x, {"eq. 3 in time (steady state)": rho}, pfc)
+    ax = fig.axes[0]
+    ax.plot(xa, pfc.profile(xa), "--", label="eq. 5 (exponential)")
+    ax.plot(xa, T.steady_profile(xa, pfc, eos), ":", label="steady ODE, Henderson EOS")
+    ax.legend()
+    fig.savefig(out("point_force.png"), dpi=150)
+    plt.close("all")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "figures")
