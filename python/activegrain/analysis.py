@@ -194,6 +194,8 @@ def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
     paper's A > 0).
     """
     rods = frame.rods()
+    if len(rods) == 0:
+        return np.zeros(0), float("nan")
     xe, ye, field = smoothed_bead_field(frame, geometry, cell, smoothing)
     f = np.nan_to_num(field, nan=np.nanmean(field))
     gx, gy = _gradient(f, xe[1] - xe[0], ye[1] - ye[0],
@@ -335,6 +337,11 @@ def phase_observables(frame, geometry):
     rods = frame.rods()
     phi_b, phi_r = global_area_fractions(frame, geometry)
     obs = {"phi_b": phi_b, "phi_r": phi_r, "n_rods": len(rods)}
+    if len(rods) == 0:  # beads only: nothing to order, segregate or layer
+        obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, phi_ahead=float("nan"),
+                   phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
+                   layer_coord="", layer_P=0.0)
+        return obs
     obs["P"] = polar_order(rods.axis)[1]
     if isinstance(geometry, Annulus):
         obs["P_tangential"] = tangential_polarization(rods, geometry)

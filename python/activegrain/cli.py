@@ -1,4 +1,4 @@
-"""Command line: ``python3 -m activegrain {profile,polar,phase,motility,snapshot,kymograph,movie,theory} ...``.
+"""Command line: ``python3 -m activegrain {profile,polar,phase,motility,snapshot,kymograph,movie,convert,theory} ...``.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
@@ -116,6 +116,12 @@ def cmd_movie(args, out):
     out.write(f"wrote {args.output} ({len(frames)} frames)\n")
 
 
+def cmd_convert(args, out):
+    frames = _frames(args)
+    io.write_extxyz(args.output, frames)
+    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+
+
 def cmd_theory(args, out):
     if args.model == "growth":
         names = [f for f in theory.LinearParameters.__dataclass_fields__]
@@ -184,6 +190,11 @@ def build_parser():
     p.add_argument("-o", "--output", required=True)
     p.add_argument("--fps", type=int, default=10)
     p.set_defaults(func=cmd_movie)
+
+    p = sub.add_parser("convert", help="write the frames as extended XYZ (through ase)")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_convert)
 
     p = sub.add_parser("theory", help="linear stability (growth) or moving point force (pointforce)")
     p.add_argument("model", choices=["growth", "pointforce"])

@@ -92,6 +92,14 @@ def _read_header(path):
     return box, static, columns
 
 
+def _universe(path, unwrap):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # MDAnalysis warns about its imports and guessed masses
+        import MDAnalysis as mda
+        return mda.Universe(path, topology_format="LAMMPSDUMP", format="LAMMPSDUMP",
+                            unwrap_images=unwrap)
+
+
 def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=None):
     """Yield the :class:`Frame` objects of a LAMMPS text dump.
 
@@ -99,15 +107,9 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
     in bead diameters when the dump is in metres. ``timestep``: time per MD step, so that
     ``frame.time = step * timestep``. ``start``, ``stop``, ``every`` slice the frames.
     """
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # MDAnalysis's own imports warn about deprecations
-        import MDAnalysis as mda
     box, static, columns = _read_header(path)
     unwrap = all(c in columns for c in ("ix", "iy", "iz"))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # MDAnalysis guesses masses and says so
-        u = mda.Universe(path, topology_format="LAMMPSDUMP", format="LAMMPSDUMP",
-                         unwrap_images=unwrap)
+    u = _universe(path, unwrap)
     lo = np.asarray(box.lo, float)
     ids = static["id"].astype(np.int64)
     mol = static["mol"].astype(np.int64)
@@ -124,11 +126,19 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
         yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
 
 
+def count_frames(path):
+    """Number of frames in a dump."""
+    _read_header(path)
+    return len(_universe(path, False).trajectory)
+
+
 def read_frame(path, index=-1, **kw):
-    """One frame of a dump (``index`` as in a Python list)."""
-    frames = list(read_dump(path, **kw)) if index < 0 else \
-        list(read_dump(path, start=index, stop=index + 1, **kw))
-    return frames[index] if index < 0 else frames[0]
+    """One frame of a dump (``index`` as in a Python list; -1 is the last)."""
+    n = count_frames(path)
+    if not -n <= index < n:
+        raise ValueError(f"{path}: no frame {index} (the dump has {n})")
+    index %= n
+    return next(read_dump(path, start=index, stop=index + 1, **kw))
 
 
 def write_dump(path, frames, append=False):
@@ -154,3 +164,10 @@ def write_dump(path, frames, append=False):
             table = np.column_stack(data)
             fmt = ["%d", "%d", "%d"] + ["%.10g"] * (len(cols) - 3)
             np.savetxt(f, table, fmt=fmt)
+
+
+def write_extxyz(path, frames):
+    """Write frames as extended XYZ through ase (cell, pbc, ``mol``, ``radius`` and
+    velocities per atom), a format OVITO and VMD open directly."""
+    import ase.io
+    ase.io.write(path, [fr.to_ase() for fr in frames], format="extxyz")

@@ -133,12 +133,18 @@ class RodSet:
         centre, axis, tail, nose, velocity, ss, rr = [], [], [], [], [], [], []
         for a, b in zip(starts, ends):
             x, r = pos[a:b], rad[a:b]
-            if b - a < 2 or np.ptp(r) <= 0:
+            if b - a < 2 or np.ptp(r) <= 1e-9 * r.max():
                 raise ValueError(f"rod {mol[a]}: needs at least two spheres with a larger tail "
                                  "than nose radius to tell its polarity")
             x = x[0] + box.minimum_image(x - x[0])  # rods may straddle a periodic boundary
-            t, n = x[np.argmax(r)], x[np.argmin(r)]
-            p = (n - t) / np.linalg.norm(n - t)
+            # axis: principal direction of the sphere centres, oriented towards the
+            # shrinking radii (robust to sphere order and to equal radii at one end)
+            d = x - x.mean(axis=0)
+            p = np.linalg.svd(d, full_matrices=False)[2][0]
+            if np.sum((d @ p) * (r - r.mean())) > 0:
+                p = -p
+            s = d @ p
+            t, n = x[np.argmin(s)], x[np.argmax(s)]
             mid = 0.5 * (t + n)
             centre.append(mid)
             axis.append(p)

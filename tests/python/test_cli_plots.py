@@ -90,3 +90,16 @@ def test_snapshot_draws_periodic_images_of_straddling_rods():
     fig = plotting.snapshot(fr, geometry_from_box(box))
     polys = fig.axes[0].collections[1]
     assert len(polys.get_paths()) == 3  # the straddling rod twice, the other once
+
+
+def test_convert_to_extxyz_through_ase(condensed_dump, tmp_path):
+    import ase.io
+    out = tmp_path / "c.extxyz"
+    rc, _ = run(["convert", condensed_dump, "--length-unit", "1e-3", "-o", str(out)])
+    assert rc == 0
+    images = ase.io.read(str(out), index=":")
+    assert len(images) == 3
+    ref = read_frame(condensed_dump, 2, length_unit=1e-3)
+    assert np.allclose(images[2].positions, ref.pos - ref.box.lo, atol=1e-4)
+    assert np.array_equal(images[2].get_array("mol"), ref.mol)
+    assert list(images[0].pbc) == [True, False, False]

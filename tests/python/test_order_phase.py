@@ -105,3 +105,14 @@ def test_condensed_layer_in_an_annulus():
     assert res.observables["layer_coord"] == "theta"
     assert res.observables["phi_ahead"] > res.observables["phi_behind"] + 0.3
     assert res.phase == "condensed"
+
+
+def test_beads_only_frame_is_isotropic_and_has_no_layer():
+    box = S.channel_box(40, 10)
+    fr = S.make_frame(box, S.lattice_beads(0, 40, 0, 10, 1.2), 0.5)
+    g = geometry_from_box(box)
+    assert A.classify_phase(fr, g).phase == "isotropic"
+    assert A.polarization(fr)["n_rods"] == 0
+    assert np.isnan(A.gradient_alignment(fr, g)[1])
+    with pytest.raises(ValueError, match="no rods"):
+        A.layer_sides(fr, g)

@@ -72,3 +72,16 @@ def test_rod_without_taper_is_rejected():
     fr = S.make_frame(box, [], 0.5, [(10, 10)], [(1, 0)], rod=(np.array([-1.0, 0.0, 1.0]), np.full(3, 0.5)))
     with pytest.raises(ValueError, match="polarity"):
         fr.rods()
+
+
+def test_axis_from_shuffled_spheres_with_equal_tail_radii():
+    box = Box((0.0, 0.0, 0.0), (30.0, 30.0, 1.12), (True, True, False))
+    s = np.array([-2.0, -1.4, -0.7, 0.0, 0.7, 1.4, 2.0])
+    r = np.array([0.55, 0.55, 0.5, 0.45, 0.42, 0.38, 0.35])  # two equal spheres at the tail
+    p = np.array([np.cos(2.0), np.sin(2.0)])
+    fr = S.make_frame(box, [], 0.5, [(29.5, 0.2)], [p], rod=(s, r))
+    perm = np.random.default_rng(0).permutation(len(s))
+    fr.radius, fr.pos = fr.radius[perm], fr.pos[perm]
+    rods = fr.rods()
+    assert np.allclose(rods.axis[0], p, atol=1e-12)
+    assert np.allclose(box.minimum_image(rods.tail[0] - (np.array([29.5, 0.2]) - 2.0 * p)), 0, atol=1e-9)
