@@ -1,4 +1,4 @@
-"""Command line: ``python3 -m activegrain {profile,polar,phase,motility,snapshot,kymograph,movie,convert,theory} ...``.
+"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory} ...``.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
@@ -61,6 +61,22 @@ def cmd_profile(args, out):
         from . import plotting
         avg = analysis.Profile(args.coord, args.species, profiles[0].edges, mean)
         plotting.plot_profiles([avg], args.plot, labels=[f"{args.species}, mean of {len(frames)} frame(s)"])
+
+
+def cmd_map(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    maps = [analysis.area_fraction_map(fr, geom, tuple(args.bins), args.species) for fr in frames]
+    xe, ye = maps[0][0], maps[0][1]
+    phi = np.mean([m[2] for m in maps], axis=0)
+    if args.output.endswith(".txt") or args.output.endswith(".csv"):
+        np.savetxt(args.output, phi.T, fmt="%.6g",
+                   header=f"{args.species} area fraction, rows y ({ye[0]:g}..{ye[-1]:g}), "
+                          f"columns x ({xe[0]:g}..{xe[-1]:g}), mean of {len(frames)} frame(s)")
+    else:
+        from . import plotting
+        plotting.plot_map(xe, ye, phi, args.output, label=f"{args.species} area fraction")
+    out.write(f"wrote {args.output}\n")
 
 
 def cmd_polar(args, out):
@@ -160,6 +176,13 @@ def build_parser():
     p.add_argument("--species", default="beads", choices=analysis.SPECIES)
     p.add_argument("--plot", help="also save a plot (png/pdf)")
     p.set_defaults(func=cmd_profile)
+
+    p = sub.add_parser("map", help="2D area-fraction map (png, or .txt/.csv table)")
+    _add_dump_args(p)
+    p.add_argument("--bins", type=int, nargs=2, default=[60, 12], metavar=("NX", "NY"))
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_map)
 
     p = sub.add_parser("polar", help="rod polarization, velocity order, alignment with the bead gradient")
     _add_dump_args(p)

@@ -67,12 +67,7 @@ def main(outdir):
     plt.close("all")
 
     xe, ye, phi = A.area_fraction_map(fr, g, (80, 15), "all")
-    fig, ax = plt.subplots(figsize=(8, 2.4))
-    m = ax.pcolormesh(xe, ye, phi.T, cmap="viridis", vmin=0, vmax=0.9)
-    fig.colorbar(m, ax=ax, label="area fraction (all)")
-    ax.set_aspect("equal")
-    fig.tight_layout()
-    fig.savefig(out("map.png"), dpi=150)
+    plotting.plot_map(xe, ye, phi, out("map.png"), label="area fraction (all)")
     plt.close("all")
 
     frames = [condensed_channel(np.random.default_rng(2 + i), shift=4.0 * i) for i in range(12)]

@@ -107,6 +107,19 @@ def plot_profiles(profiles, path=None, labels=None, ax=None):
     return fig or ax.figure
 
 
+def plot_map(x_edges, y_edges, phi, path=None, label="area fraction"):
+    """Image of a 2D area-fraction map (``phi[nx, ny]``; NaN outside the cell)."""
+    L = (x_edges[-1] - x_edges[0], y_edges[-1] - y_edges[0])
+    fig, ax = plt.subplots(figsize=(8, max(1.8, 8 * L[1] / L[0]) + 0.6))
+    m = ax.pcolormesh(x_edges, y_edges, np.asarray(phi).T, cmap="viridis", vmin=0)
+    fig.colorbar(m, ax=ax, label=label)
+    ax.set_aspect("equal")
+    fig.tight_layout()
+    if path:
+        fig.savefig(path, dpi=150)
+    return fig
+
+
 def kymograph(times, profiles, path=None, label="bead area fraction"):
     """Image of profiles (rows: times) against the profile coordinate."""
     fractions = np.array([p.fraction for p in profiles])

@@ -103,3 +103,17 @@ def test_convert_to_extxyz_through_ase(condensed_dump, tmp_path):
     assert np.allclose(images[2].positions, ref.pos - ref.box.lo, atol=1e-4)
     assert np.array_equal(images[2].get_array("mol"), ref.mol)
     assert list(images[0].pbc) == [True, False, False]
+
+
+def test_map_command_table(condensed_dump, tmp_path):
+    table = tmp_path / "m.txt"
+    rc, _ = run(["map", condensed_dump, "--length-unit", "1e-3", "--frame", "0", "--bins", "31", "1",
+                 "--species", "beads", "-o", str(table)])
+    assert rc == 0
+    phi = np.loadtxt(table, ndmin=2)
+    assert phi.shape == (1, 31)
+    rc, text = run(["profile", condensed_dump, "--length-unit", "1e-3", "--frame", "0", "--bins", "31"])
+    prof = np.array([l.split() for l in text.splitlines()[1:]], float)[:, 1]
+    assert np.allclose(phi[0], prof)  # a one-row map is the x profile
+    rc, _ = run(["map", condensed_dump, "--length-unit", "1e-3", "-o", str(tmp_path / "m.png")])
+    assert rc == 0 and (tmp_path / "m.png").stat().st_size > 1000
