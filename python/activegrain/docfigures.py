@@ -15,38 +15,56 @@ from . import analysis as A, motility as M, plotting, synthetic as S, theory as 
 from .geometry import Annulus, Box, geometry_from_box  # noqa: E402
 
 
-def graded_beads(rng, x0, x1, y0, y1, phi_of_x, dy=1.04, jitter=0.02):
-    """Columns of beads (alternate columns offset by dy/2) spaced so that the local area
-    fraction follows ``phi_of_x``."""
-    cols, x = [], x0
-    k = 0
-    while x < x1:
-        phi = phi_of_x(x)
-        dx = max(np.pi * 0.25 / (phi * dy), np.sqrt(1.0 - (dy / 2) ** 2) + 2 * jitter + 1e-3)
-        ys = np.arange(y0 + 0.5 + (dy / 2) * (k % 2), y1 - 0.5, dy)
-        cols.append(np.column_stack([np.full(len(ys), x + dx / 2), ys]))
-        x += dx
-        k += 1
-    pts = np.concatenate(cols)
-    return pts + rng.uniform(-jitter, jitter, pts.shape)
+def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=300):
+    """Beads drawn with local area fraction ``phi_of_x`` (rejection sampling along x), then
+    pushed apart until no two overlap (and none overlaps a fixed obstacle disc): a
+    disordered, liquid-like packing with the requested profile."""
+    from scipy.spatial import cKDTree
+    lo, L = np.asarray(box.lo[:2]), box.lengths[:2]
+    xs = np.linspace(lo[0], lo[0] + L[0], 2001)
+    dens = np.array([phi_of_x(x) for x in xs])
+    n = int(round(np.trapz(dens, xs) * L[1] / (np.pi * r * r)))
+    cdf = np.concatenate([[0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(xs))])
+    x = np.interp(rng.uniform(0, cdf[-1], n), cdf, xs)
+    xy = np.column_stack([x, rng.uniform(lo[1] + r, lo[1] + L[1] - r, n)])
+    obstacles = np.asarray(obstacles, float).reshape(-1, 2)
+    obstacle_r = np.asarray(obstacle_r, float)
+    for _ in range(sweeps):
+        pts = np.concatenate([xy, obstacles])
+        rad = np.concatenate([np.full(n, r), obstacle_r])
+        tree = cKDTree(box.wrap(pts) - lo, boxsize=[L[0], L[1] + 10 * L[1]])
+        pairs = tree.query_pairs(2 * max(r, rad.max()), output_type="ndarray")
+        d = box.minimum_image(pts[pairs[:, 1]] - pts[pairs[:, 0]])
+        dist = np.linalg.norm(d, axis=1)
+        overlap = rad[pairs[:, 0]] + rad[pairs[:, 1]] - dist
+        hit = overlap > 0
+        if not hit.any():
+            break
+        push = 0.5 * (overlap[hit] + 1e-3)[:, None] * d[hit] / np.maximum(dist[hit], 1e-9)[:, None]
+        move = np.zeros_like(pts)
+        np.add.at(move, pairs[hit, 0], -push)
+        np.add.at(move, pairs[hit, 1], push)
+        xy += move[:n]
+        xy[:, 1] = np.clip(xy[:, 1], lo[1] + r, lo[1] + L[1] - r)
+        xy = box.wrap(xy)
+    return xy
 
 
 def condensed_channel(rng, shift=0.0, length=160.0, width=31.0):
     """A rod monolayer at x = 30 + shift pushing beads: phi_b follows eq. 5's exponential
-    ahead (from 0.80 down to 0.45) and is 0.45 elsewhere."""
+    ahead (from 0.78 down to 0.45) and is 0.45 elsewhere."""
     box = S.channel_box(length, width)
     x_layer = 30.0
-    phi = lambda x: 0.45 + (0.80 - 0.45) * np.exp(-(x - x_layer - 3) / 25.0) if x > x_layer + 2.5 else 0.45
-    beads = graded_beads(rng, x_layer + 2.6, length + x_layer - 3, 0, width, phi)
-    beads = np.concatenate([beads, graded_beads(rng, 0.0, x_layer - 3.0, 0, width, lambda x: 0.45)])
-    beads = beads[beads[:, 0] < length]
     ys = np.arange(1.0, width - 0.5, 1.15)
     ang = rng.normal(0, 0.08, len(ys))
     axes = np.column_stack([np.cos(ang), np.sin(ang)])
     centres = np.column_stack([x_layer + rng.normal(0, 0.3, len(ys)), ys])
-    beads = S.remove_overlaps(beads, box, centres, axes)
-    xy = beads + [shift, 0.0]
-    return S.make_frame(box, xy, 0.5, centres + [shift, 0.0], axes)
+    s, r = S.rod_spheres()
+    spheres = (centres[:, None, :] + s[None, :, None] * axes[:, None, :]).reshape(-1, 2)
+    phi = lambda x: (0.45 + 0.33 * np.exp(-(x - x_layer - 3) / 25.0) if x > x_layer + 2.5 else
+                     (0.0 if x > x_layer - 3 else 0.45))
+    beads = relaxed_beads(rng, box, phi, spheres, np.tile(r, len(ys)))
+    return S.make_frame(box, box.wrap(beads + [shift, 0.0]), 0.5, centres + [shift, 0.0], axes)
 
 
 def main(outdir):
@@ -63,6 +81,7 @@ def main(outdir):
     pr = A.area_fraction_profile(fr, g, "x", 40, "rods")
     fig = plotting.plot_profiles([pb, pr], labels=["beads", "rods"])
     fig.axes[0].set_title("area-fraction profiles along the channel")
+    fig.tight_layout()
     fig.savefig(out("profile.png"), dpi=150)
     plt.close("all")
 
@@ -70,7 +89,7 @@ def main(outdir):
     plotting.plot_map(xe, ye, phi, out("map.png"), label="area fraction (all)")
     plt.close("all")
 
-    frames = [condensed_channel(np.random.default_rng(2 + i), shift=4.0 * i) for i in range(12)]
+    frames = [condensed_channel(np.random.default_rng(2), shift=4.0 * i) for i in range(12)]
     for i, f in enumerate(frames):
         f.time, f.step = 10.0 * i, 1000 * i
         f.pos[:, :2] = f.box.wrap(f.pos[:, :2])
