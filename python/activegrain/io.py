@@ -69,6 +69,9 @@ def _read_header(path):
     """Box bounds with boundary flags and the per-atom columns of the first frame."""
     with open(path) as f:
         lines = [f.readline() for _ in range(9)]
+        if any(l.startswith(("ITEM: UNITS", "ITEM: TIME\n")) for l in lines):
+            raise ValueError(f"{path}: dumps written with 'dump_modify units yes' or 'time yes' "
+                             "are not supported (MDAnalysis expects the plain header)")
         if not lines[0].startswith("ITEM: TIMESTEP") or not lines[8].startswith("ITEM: ATOMS"):
             raise ValueError(f"{path}: not a LAMMPS text dump (ITEM: TIMESTEP / ITEM: ATOMS expected)")
         n = int(lines[3])

@@ -64,6 +64,12 @@ def test_missing_columns_and_not_a_dump(tmp_path):
                  "0 1\n0 1\n0 1\nITEM: ATOMS id type x y z\n1 1 0.5 0.5 0.5\n")
     with pytest.raises(ValueError, match="mol"):
         read_frame(str(p))
+    t = tmp_path / "time.dump"
+    t.write_text("ITEM: UNITS\nsi\nITEM: TIME\n0\nITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\n"
+                 "ITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\nITEM: ATOMS id mol type radius x y z\n"
+                 "1 0 1 0.5 0.5 0.5 0.5\n")
+    with pytest.raises(ValueError, match="dump_modify"):
+        read_frame(str(t))
     q = tmp_path / "junk.txt"
     q.write_text("hello\n" * 20)
     with pytest.raises(ValueError, match="not a LAMMPS text dump"):
