@@ -8,7 +8,7 @@ by the bin's area inside the cell. The quadrature spacing (``spacing``, default 
 quarter of the smallest particle radius) sets how sharply a particle edge is resolved,
 never the total area.
 """
-from dataclasses import dataclass, asdict, field
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage
@@ -225,7 +225,7 @@ class LayerSides:
         return self.phi_ahead - self.phi_behind
 
 
-def _layer_axis(frame, geometry, rods):
+def _layer_axis(geometry, rods):
     if isinstance(geometry, Annulus):
         return "theta", (1 if tangential_polarization(rods, geometry) >= 0 else -1)
     m, _ = polar_order(rods.axis)
@@ -253,7 +253,7 @@ def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
         raise ValueError("layer_sides: the frame has no rods")
     L = float(np.median(rods.length))
     halfwidth, gap, window = halfwidth or L, gap or L, window or 5 * L
-    coord, direction = _layer_axis(frame, geometry, rods)
+    coord, direction = _layer_axis(geometry, rods)
     lo, hi = geometry.coordinate_range(coord)
     periodic = geometry.is_periodic(coord)
     to_q = 1.0 / (0.5 * (geometry.r_in + geometry.r_out)) if coord == "theta" else 1.0

@@ -10,7 +10,7 @@ cell geometries that analysis needs on top of it:
 
 All lengths are in the units of the frame they describe.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 

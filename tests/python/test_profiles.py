@@ -4,7 +4,7 @@ import pytest
 from scipy.integrate import quad
 
 from activegrain import analysis as A, synthetic as S
-from activegrain.geometry import Annulus, Box, Channel, geometry_from_box
+from activegrain.geometry import Annulus, Box, geometry_from_box
 from activegrain.rods import chain_halfwidth
 
 
