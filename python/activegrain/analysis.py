@@ -212,11 +212,12 @@ def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
 
 @dataclass
 class LayerSides:
-    """The rod layer and the bead area fraction on both of its sides."""
+    """A rod layer and the bead area fraction on both of its sides."""
     coord: str            # coordinate across the layer ('x', 'y' or 'theta')
     position: float       # layer position along coord
-    direction: int        # +1 / -1: the side the rods point to ("ahead")
-    fraction_in_layer: float
+    direction: int        # +1 / -1: the side the layer's rods point to ("ahead")
+    fraction_in_layer: float  # share of all rods in this layer
+    alignment: float      # |<p>| of the layer's rods
     phi_ahead: float
     phi_behind: float
 
@@ -225,39 +226,48 @@ class LayerSides:
         return self.phi_ahead - self.phi_behind
 
 
-def _layer_axis(geometry, rods):
+def _layer_coordinate(geometry, rods):
+    """Across which coordinate to look for layers: theta in an annulus, x in a channel,
+    in a box the axis the rods point along most (by |p|, so opposed layers count)."""
     if isinstance(geometry, Annulus):
-        return "theta", (1 if tangential_polarization(rods, geometry) >= 0 else -1)
-    m, _ = polar_order(rods.axis)
+        return "theta"
     if geometry.kind == "channel":
-        k = 0
-    else:
-        k = int(np.argmax(np.abs(m)))
-    return "xy"[k], (1 if m[k] >= 0 else -1)
+        return "x"
+    return "xy"[int(np.argmax(np.mean(np.abs(rods.axis), axis=0)))]
 
 
-def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
-    """Find the densest rod layer and measure the bead area fraction on both sides.
+def _along(geometry, rods, coord):
+    """Each rod's axis component along increasing ``coord``."""
+    if coord == "theta":
+        d = rods.centre - np.asarray(geometry.centre)
+        e = np.stack([-d[:, 1], d[:, 0]], 1) / np.linalg.norm(d, axis=1)[:, None]
+        return np.sum(rods.axis * e, axis=1)
+    return rods.axis[:, "xy".index(coord)]
 
-    The layer is searched across the coordinate along which the rods point (x in a
-    channel, theta in an annulus, the axis of the mean polarization in a box). Its
-    position is the peak of the rod-density histogram (bins of half a rod length,
-    refined by the mean of the rods within ``halfwidth``). ``fraction_in_layer``: share
-    of the rods within ``halfwidth`` (default one rod length) of it. ``phi_ahead`` and
-    ``phi_behind``: bead area fraction in windows of width ``window`` (default 5 rod
-    lengths) starting ``gap`` (default one rod length) in front of / behind the layer.
-    Lengths along theta are arc lengths at the annulus's mid radius.
+
+def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None, gap=None,
+                window=None):
+    """Find up to ``max_layers`` rod layers and the bead area fraction on both sides of each.
+
+    Layers are searched across the coordinate the rods point along (x in a channel, theta
+    in an annulus, the dominant axis of |p| in a box) as peaks of the rod-density
+    histogram (bins of half a rod length), each refined by the mean position of the rods
+    within ``halfwidth`` (default one rod length L) and kept if it holds at least
+    ``min_fraction`` of the rods; the densest comes first, the next is searched among
+    the remaining rods. A layer's direction is the sign of its own rods' mean axis
+    component; ``phi_ahead`` / ``phi_behind`` are bead area fractions in windows of width
+    ``window`` (default 5 L) starting ``gap`` (default L) ahead of / behind it. Lengths along
+    theta are arc lengths at the annulus's mid radius.
     """
     rods = frame.rods()
     if len(rods) == 0:
         raise ValueError("layer_sides: the frame has no rods")
     L = float(np.median(rods.length))
-    halfwidth, gap, window = halfwidth or L, gap or L, window or 5 * L
-    coord, direction = _layer_axis(geometry, rods)
+    coord = _layer_coordinate(geometry, rods)
+    to_q = 1.0 / (0.5 * (geometry.r_in + geometry.r_out)) if coord == "theta" else 1.0
+    halfwidth, gap, window = (halfwidth or L) * to_q, (gap or L) * to_q, (window or 5 * L) * to_q
     lo, hi = geometry.coordinate_range(coord)
     periodic = geometry.is_periodic(coord)
-    to_q = 1.0 / (0.5 * (geometry.r_in + geometry.r_out)) if coord == "theta" else 1.0
-    halfwidth, gap, window = halfwidth * to_q, gap * to_q, window * to_q
     period = hi - lo
 
     def rel(q, q0):
@@ -265,20 +275,11 @@ def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
         return d - period * np.round(d / period) if periodic else d
 
     q = geometry.coordinate(rods.centre, coord)
-    nb = max(3, int(round(period / (0.5 * L * to_q))))
-    counts, edges = np.histogram(q, nb, (lo, hi))
-    counts = ndimage.gaussian_filter1d(counts.astype(float), 1.0, mode="wrap" if periodic else "nearest")
-    peak = 0.5 * (edges[:-1] + edges[1:])[np.argmax(counts)]
-    near = np.abs(rel(q, peak)) <= halfwidth
-    position = peak + np.mean(rel(q[near], peak))
-    if periodic:
-        position = lo + np.mod(position - lo, period)
-    in_layer = np.abs(rel(q, position)) <= halfwidth
-
+    along = _along(geometry, rods, coord)
     xy, w = area_samples(frame, "beads")
     qb = geometry.coordinate(xy, coord)
 
-    def window_fraction(sign):
+    def window_fraction(position, sign):
         a, b = sorted((position + sign * gap, position + sign * (gap + window)))
         if not periodic:
             a, b = max(a, lo), min(b, hi)
@@ -288,8 +289,32 @@ def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
         covered = w[(d > gap) & (d <= gap + (b - a))].sum()
         return float(covered / geometry.bin_areas(coord, np.array([a, b]))[0])
 
-    return LayerSides(coord, float(position), direction, float(in_layer.mean()),
-                      window_fraction(direction), window_fraction(-direction))
+    free = np.ones(len(rods), bool)
+    nb = max(3, int(round(period / (0.5 * L * to_q))))
+    layers = []
+    while len(layers) < max_layers and free.any():
+        counts, edges = np.histogram(q[free], nb, (lo, hi))
+        counts = ndimage.gaussian_filter1d(counts.astype(float), 1.0, mode="wrap" if periodic else "nearest")
+        peak = 0.5 * (edges[:-1] + edges[1:])[np.argmax(counts)]
+        near = free & (np.abs(rel(q, peak)) <= halfwidth)
+        position = peak + np.mean(rel(q[near], peak))
+        if periodic:
+            position = lo + np.mod(position - lo, period)
+        members = free & (np.abs(rel(q, position)) <= halfwidth)
+        if layers and members.mean() < min_fraction:
+            break
+        direction = 1 if along[members].sum() >= 0 else -1
+        layers.append(LayerSides(coord, float(position), direction, float(members.mean()),
+                                 polar_order(rods.axis[members])[1] if members.any() else 0.0,
+                                 window_fraction(position, direction), window_fraction(position, -direction)))
+        free &= ~members
+    return layers
+
+
+def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
+    """The densest rod layer and the bead area fraction on both of its sides
+    (:func:`find_layers` with one layer)."""
+    return find_layers(frame, geometry, 1, halfwidth=halfwidth, gap=gap, window=window)[0]
 
 
 # --------------------------------------------------------------------------- phases
@@ -299,9 +324,9 @@ class PhaseThresholds:
     """Thresholds of :func:`classify_phase` (see docs/python.rst for their reasons)."""
     polar_order: float = 0.5      # |<p>| above which rods count as aligned (flock)
     segregation: float = 0.3      # segregation index above which rods and beads demix
-    layer_fraction: float = 0.5   # share of rods in one layer for an active interface
-    layer_contrast: float = 0.1   # phi_b ahead minus behind the layer for condensation
-    layer_alignment: float = 0.5  # |<p>| of the layer's rods for an active interface
+    layer_fraction: float = 0.5   # share of rods in active layers for an active interface
+    layer_contrast: float = 0.1   # phi_b ahead minus behind a layer for it to be active
+    layer_alignment: float = 0.5  # |<p>| of a layer's rods for it to be active
 
 
 def segregation_index(frame, geometry, cell=None):
@@ -332,38 +357,36 @@ class PhaseResult:
     observables: dict = field(default_factory=dict)
 
 
-def phase_observables(frame, geometry):
-    """The measured observables :func:`classify_phase` decides on."""
+def phase_observables(frame, geometry, thresholds=None):
+    """The measured observables :func:`classify_phase` decides on.
+
+    Layer observables: those of the densest layer (``layer_*``, ``phi_ahead``,
+    ``phi_behind``), and over up to two layers the number of *active* ones (aligned and
+    with a bead contrast, per ``thresholds``) and the share of rods they hold
+    (``active_layer_fraction``). Two active layers pointing at each other trap a condensate.
+    """
+    t = thresholds or PhaseThresholds()
     rods = frame.rods()
     phi_b, phi_r = global_area_fractions(frame, geometry)
     obs = {"phi_b": phi_b, "phi_r": phi_r, "n_rods": len(rods)}
     if len(rods) == 0:  # beads only: nothing to order, segregate or layer
-        obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, phi_ahead=float("nan"),
+        obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
                    phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
-                   layer_coord="", layer_P=0.0)
+                   layer_coord="", n_active_layers=0, active_layer_fraction=0.0)
         return obs
     obs["P"] = polar_order(rods.axis)[1]
     if isinstance(geometry, Annulus):
         obs["P_tangential"] = tangential_polarization(rods, geometry)
     obs["segregation"] = segregation_index(frame, geometry)
-    layer = layer_sides(frame, geometry)
-    obs.update(layer_fraction=layer.fraction_in_layer, phi_ahead=layer.phi_ahead,
-               phi_behind=layer.phi_behind, layer_contrast=layer.contrast,
-               layer_position=layer.position, layer_coord=layer.coord)
-    in_layer = np.abs(_wrapped(geometry, layer, geometry.coordinate(rods.centre, layer.coord)))
-    L = float(np.median(rods.length))
-    scale = 1.0 / (0.5 * (geometry.r_in + geometry.r_out)) if layer.coord == "theta" else 1.0
-    members = in_layer <= L * scale
-    obs["layer_P"] = polar_order(rods.axis[members])[1] if members.any() else 0.0
+    layers = find_layers(frame, geometry)
+    first = layers[0]
+    obs.update(layer_fraction=first.fraction_in_layer, layer_P=first.alignment,
+               phi_ahead=first.phi_ahead, phi_behind=first.phi_behind,
+               layer_contrast=first.contrast, layer_position=first.position, layer_coord=first.coord)
+    active = [l for l in layers if l.alignment >= t.layer_alignment and l.contrast >= t.layer_contrast]
+    obs["n_active_layers"] = len(active)
+    obs["active_layer_fraction"] = float(sum(l.fraction_in_layer for l in active))
     return obs
-
-
-def _wrapped(geometry, layer, q):
-    d = q - layer.position
-    if geometry.is_periodic(layer.coord):
-        lo, hi = geometry.coordinate_range(layer.coord)
-        d -= (hi - lo) * np.round(d / (hi - lo))
-    return d
 
 
 def classify_phase(frame, geometry, thresholds=PhaseThresholds()):
@@ -371,17 +394,16 @@ def classify_phase(frame, geometry, thresholds=PhaseThresholds()):
 
     Decided in this order on measured observables (:func:`phase_observables`):
 
-    1. ``condensed``: at least ``layer_fraction`` of the rods in one layer, aligned
-       (layer |<p>| >= ``layer_alignment``), with the bead fraction ahead exceeding the one
-       behind by ``layer_contrast``;
+    1. ``condensed``: active layers (aligned, |<p>| >= ``layer_alignment``, with the bead
+       fraction ahead exceeding the one behind by ``layer_contrast``; one layer, or two
+       trapping a condensate) hold at least ``layer_fraction`` of the rods;
     2. ``segregated``: segregation index >= ``segregation``;
     3. ``flock``: rod polar order |<p>| >= ``polar_order``;
     4. ``isotropic`` otherwise.
     """
-    obs = phase_observables(frame, geometry)
+    obs = phase_observables(frame, geometry, thresholds)
     t = thresholds
-    if (obs["layer_fraction"] >= t.layer_fraction and obs["layer_P"] >= t.layer_alignment
-            and obs["layer_contrast"] >= t.layer_contrast):
+    if obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
         phase = "condensed"
     elif obs["segregation"] >= t.segregation:
         phase = "segregated"

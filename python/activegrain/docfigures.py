@@ -119,15 +119,15 @@ def main(outdir):
     fig.savefig(out("annulus.png"), dpi=130)
     plt.close("all")
 
-    fig, axs = plt.subplots(4, 1, figsize=(8, 9.5))
-    for ax, phase in zip(axs, ("isotropic", "flock", "segregated", "condensed")):
+    fig, axs = plt.subplots(5, 1, figsize=(8, 11.8))
+    for ax, phase in zip(axs, ("isotropic", "flock", "segregated", "condensed", "trapped")):
         pf = S.phase_configuration(phase, seed=3)
         res = A.classify_phase(pf, geometry_from_box(pf.box))
         plotting.draw_snapshot(ax, pf, geometry_from_box(pf.box))
         o = res.observables
         ax.set_title(f"built as {phase}: classified {res.phase}  (P={o['P']:.2f}, "
-                     f"S={o['segregation']:.2f}, layer {o['layer_fraction']:.2f}, "
-                     f"contrast {o['layer_contrast']:.2f})", fontsize=9)
+                     f"S={o['segregation']:.2f}, layers {o['n_active_layers']} with "
+                     f"{o['active_layer_fraction']:.2f}, contrast {o['layer_contrast']:.2f})", fontsize=9)
     fig.tight_layout()
     fig.savefig(out("phases.png"), dpi=120)
     plt.close("all")

@@ -109,7 +109,9 @@ def phase_configuration(phase, seed=0, length=124.0, width=31.0):
     flock: the same with all rods pointing +x (within +-15 degrees);
     segregated: rods crowded at random orientations into a bead-free quarter;
     condensed: one width-spanning row of rods pointing +x, beads close-packed ahead of
-    it (phi_b ~ 0.78) and dilute (~0.2) elsewhere.
+    it (phi_b ~ 0.78) and dilute (~0.2) elsewhere;
+    trapped: two such rows pointing at each other with the close-packed beads between
+    them (a condensed phase held by two active layers).
     """
     rng = np.random.default_rng(seed)
     box = channel_box(length, width)
@@ -131,6 +133,16 @@ def phase_configuration(phase, seed=0, length=124.0, width=31.0):
         axes = np.tile([1.0, 0.0], (len(ys), 1))
         dense = lattice_beads(x0 + 3, x0 + 3 + 1.0 * 60, 0, width, 1.0)
         dilute = np.concatenate([lattice_beads(x0 + 63, length, 0, width, 2.0),
+                                 lattice_beads(0, x0 - 3, 0, width, 2.0)])
+        beads = np.concatenate([dense, dilute])
+    elif phase == "trapped":
+        x0, x1 = 30.0, 70.0
+        ys = np.arange(1.0, width - 0.5, 1.15)
+        centres = np.concatenate([np.column_stack([np.full(len(ys), x0), ys]),
+                                  np.column_stack([np.full(len(ys), x1), ys])])
+        axes = np.concatenate([np.tile([1.0, 0.0], (len(ys), 1)), np.tile([-1.0, 0.0], (len(ys), 1))])
+        dense = lattice_beads(x0 + 3, x1 - 3, 0, width, 1.0)
+        dilute = np.concatenate([lattice_beads(x1 + 3, length, 0, width, 2.0),
                                  lattice_beads(0, x0 - 3, 0, width, 2.0)])
         beads = np.concatenate([dense, dilute])
     else:

@@ -80,6 +80,26 @@ def test_classifier_recognises_constructed_phases(phase, seed):
     assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == phase
 
 
+def test_two_opposed_layers_trap_a_condensate():
+    fr = S.phase_configuration("trapped")
+    g = geometry_from_box(fr.box)
+    layers = A.find_layers(fr, g)
+    assert len(layers) == 2
+    assert sorted((l.position, l.direction) for l in layers) == [(30.0, 1), (70.0, -1)]
+    for l in layers:
+        assert l.fraction_in_layer == pytest.approx(0.5)
+        assert l.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)
+        assert l.phi_behind == pytest.approx(np.pi / 16, rel=0.1)
+    res = A.classify_phase(fr, g)
+    assert res.phase == "condensed"
+    assert res.observables["n_active_layers"] == 2
+    assert res.observables["P"] == pytest.approx(0.0, abs=1e-12)  # no net polarization
+    # with one layer's rods turned around, that layer pushes into the dilute side: not active
+    rods = fr.rods()
+    flipped = S.make_frame(fr.box, fr.beads()[0], 0.5, rods.centre, np.tile([1.0, 0.0], (len(rods), 1)))
+    assert A.phase_observables(flipped, g)["n_active_layers"] == 1
+
+
 def test_classifier_thresholds_are_what_decides():
     fr = S.phase_configuration("flock")
     g = geometry_from_box(fr.box)
