@@ -8,10 +8,12 @@ by the bin's area inside the cell. The quadrature spacing (``spacing``, default 
 quarter of the smallest particle radius) sets how sharply a particle edge is resolved,
 never the total area.
 """
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage
+from scipy.optimize import OptimizeWarning, curve_fit
 
 from .geometry import Annulus
 from .rods import disc_samples
@@ -315,6 +317,53 @@ def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
     """The densest rod layer and the bead area fraction on both of its sides
     (:func:`find_layers` with one layer)."""
     return find_layers(frame, geometry, 1, halfwidth=halfwidth, gap=gap, window=window)[0]
+
+
+def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="beads", spacing=None):
+    """Area-fraction profile against the distance ahead of a rod layer.
+
+    ``layer``: a :class:`LayerSides` (default: the densest layer of the frame). The
+    distance is signed, positive on the side the layer's rods point to, in length units
+    (arc length at the mid radius in an annulus), over [-extent, extent] (default: half
+    the period, or the cell's extent). Averaging such profiles over frames follows a
+    moving layer, which a lab-frame profile would smear out.
+    """
+    layer = layer or layer_sides(frame, geometry)
+    coord = layer.coord
+    lo, hi = geometry.coordinate_range(coord)
+    arc = 0.5 * (geometry.r_in + geometry.r_out) if coord == "theta" else 1.0
+    periodic = geometry.is_periodic(coord)
+    extent = extent or 0.5 * (hi - lo) * arc
+    edges = np.linspace(-extent, extent, int(bins) + 1)
+    xy, w = area_samples(frame, species, spacing)
+    d = geometry.coordinate(xy, coord) - layer.position
+    if periodic:
+        d -= (hi - lo) * np.round(d / (hi - lo))
+    covered, _ = np.histogram(d * layer.direction * arc, edges, weights=w)
+    absolute = layer.position + layer.direction * edges / arc
+    if not periodic:
+        absolute = np.clip(absolute, lo, hi)
+    area = np.abs(geometry.bin_areas(coord, absolute))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fraction = np.where(area > 0, covered / area, np.nan)
+    return Profile("distance ahead of layer", species, edges, fraction)
+
+
+def fit_layer_exponential(profile, start, stop=None):
+    """Fit eq. 5's shape phi0 + (phi_plus - phi0) exp(-d / ell) to a :func:`layer_profile`
+    for distances ``start`` <= d <= ``stop`` (default: to the end) ahead of the layer.
+    Returns (phi_plus, ell, phi0), with phi_plus extrapolated to d = 0."""
+    d, phi = profile.centres, profile.fraction
+    ok = (d >= start) & (d <= (np.inf if stop is None else stop)) & np.isfinite(phi)
+    d, phi = d[ok], phi[ok]
+    if len(d) < 4:
+        raise ValueError("fit_layer_exponential: fewer than 4 bins ahead of the layer")
+    model = lambda x, a, ell, c: c + a * np.exp(-x / ell)
+    p0 = (max(phi[0] - phi[-1], 1e-3), 0.3 * (d[-1] - d[0]) + 1e-9, phi[-1])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OptimizeWarning)  # a flat profile has no covariance
+        (a, ell, c), _ = curve_fit(model, d, phi, p0=p0, maxfev=20000)
+    return float(c + a), float(ell), float(c)
 
 
 # --------------------------------------------------------------------------- phases

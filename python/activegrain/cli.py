@@ -53,13 +53,23 @@ def _print_table(rows, out):
 def cmd_profile(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species) for fr in frames]
+    if args.relative_to_layer:
+        profiles = [analysis.layer_profile(fr, geom, extent=args.extent, bins=args.bins, species=args.species)
+                    for fr in frames]
+        name = "distance_ahead_of_layer"
+    else:
+        profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species) for fr in frames]
+        name = args.coord
     mean = np.mean([p.fraction for p in profiles], axis=0)
-    rows = [{args.coord: float(c), "area_fraction": float(v)} for c, v in zip(profiles[0].centres, mean)]
-    _print_table(rows, out)
+    avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
+    _print_table([{name: float(c), "area_fraction": float(v)} for c, v in zip(avg.centres, mean)], out)
+    if args.fit is not None:
+        if not args.relative_to_layer:
+            raise ValueError("--fit needs --relative-to-layer")
+        phi_plus, ell, phi0 = analysis.fit_layer_exponential(avg, args.fit[0], args.fit[1])
+        out.write(f"# eq. 5 fit: phi_plus {phi_plus:.6g} ell {ell:.6g} phi0 {phi0:.6g}\n")
     if args.plot:
         from . import plotting
-        avg = analysis.Profile(args.coord, args.species, profiles[0].edges, mean)
         plotting.plot_profiles([avg], args.plot, labels=[f"{args.species}, mean of {len(frames)} frame(s)"])
 
 
@@ -174,6 +184,11 @@ def build_parser():
     p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
     p.add_argument("--bins", type=int, default=50)
     p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("--relative-to-layer", action="store_true",
+                   help="profile against the distance ahead of each frame's densest rod layer")
+    p.add_argument("--extent", type=float, help="with --relative-to-layer: largest |distance|")
+    p.add_argument("--fit", type=float, nargs=2, metavar=("START", "STOP"),
+                   help="with --relative-to-layer: fit eq. 5's exponential between these distances")
     p.add_argument("--plot", help="also save a plot (png/pdf)")
     p.set_defaults(func=cmd_profile)
 

@@ -15,41 +15,6 @@ from . import analysis as A, motility as M, plotting, synthetic as S, theory as 
 from .geometry import Annulus, Box, geometry_from_box  # noqa: E402
 
 
-def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=300):
-    """Beads drawn with local area fraction ``phi_of_x`` (rejection sampling along x), then
-    pushed apart until no two overlap (and none overlaps a fixed obstacle disc): a
-    disordered, liquid-like packing with the requested profile."""
-    from scipy.spatial import cKDTree
-    lo, L = np.asarray(box.lo[:2]), box.lengths[:2]
-    xs = np.linspace(lo[0], lo[0] + L[0], 2001)
-    dens = np.array([phi_of_x(x) for x in xs])
-    n = int(round(np.trapz(dens, xs) * L[1] / (np.pi * r * r)))
-    cdf = np.concatenate([[0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(xs))])
-    x = np.interp(rng.uniform(0, cdf[-1], n), cdf, xs)
-    xy = np.column_stack([x, rng.uniform(lo[1] + r, lo[1] + L[1] - r, n)])
-    obstacles = np.asarray(obstacles, float).reshape(-1, 2)
-    obstacle_r = np.asarray(obstacle_r, float)
-    for _ in range(sweeps):
-        pts = np.concatenate([xy, obstacles])
-        rad = np.concatenate([np.full(n, r), obstacle_r])
-        tree = cKDTree(box.wrap(pts) - lo, boxsize=[L[0], L[1] + 10 * L[1]])
-        pairs = tree.query_pairs(2 * max(r, rad.max()), output_type="ndarray")
-        d = box.minimum_image(pts[pairs[:, 1]] - pts[pairs[:, 0]])
-        dist = np.linalg.norm(d, axis=1)
-        overlap = rad[pairs[:, 0]] + rad[pairs[:, 1]] - dist
-        hit = overlap > 0
-        if not hit.any():
-            break
-        push = 0.5 * (overlap[hit] + 1e-3)[:, None] * d[hit] / np.maximum(dist[hit], 1e-9)[:, None]
-        move = np.zeros_like(pts)
-        np.add.at(move, pairs[hit, 0], -push)
-        np.add.at(move, pairs[hit, 1], push)
-        xy += move[:n]
-        xy[:, 1] = np.clip(xy[:, 1], lo[1] + r, lo[1] + L[1] - r)
-        xy = box.wrap(xy)
-    return xy
-
-
 def condensed_channel(rng, shift=0.0, length=160.0, width=31.0):
     """A rod monolayer at x = 30 + shift pushing beads: phi_b follows eq. 5's exponential
     ahead (from 0.78 down to 0.45) and is 0.45 elsewhere."""
@@ -63,7 +28,7 @@ def condensed_channel(rng, shift=0.0, length=160.0, width=31.0):
     spheres = (centres[:, None, :] + s[None, :, None] * axes[:, None, :]).reshape(-1, 2)
     phi = lambda x: (0.45 + 0.33 * np.exp(-(x - x_layer - 3) / 25.0) if x > x_layer + 2.5 else
                      (0.0 if x > x_layer - 3 else 0.45))
-    beads = relaxed_beads(rng, box, phi, spheres, np.tile(r, len(ys)))
+    beads = S.relaxed_beads(rng, box, phi, spheres, np.tile(r, len(ys)))
     return S.make_frame(box, box.wrap(beads + [shift, 0.0]), 0.5, centres + [shift, 0.0], axes)
 
 
@@ -97,6 +62,19 @@ def main(outdir):
     plotting.kymograph([f.time for f in frames], profiles, out("kymograph.png"))
     plt.close("all")
     plotting.movie(frames[::2], out("movie.gif"), g, fps=4, width=5)
+
+    lp = [A.layer_profile(f, g, extent=80.0, bins=40) for f in frames]
+    avg = A.Profile(lp[0].coord, "beads", lp[0].edges, np.mean([p.fraction for p in lp], axis=0))
+    phi_plus, ell, phi0 = A.fit_layer_exponential(avg, 4.0)
+    fig = plotting.plot_profiles([avg], labels=["beads, mean over 12 frames"])
+    d = np.linspace(4.0, 80.0, 200)
+    fig.axes[0].plot(d, phi0 + (phi_plus - phi0) * np.exp(-d / ell), "k--",
+                     label=rf"fit: $\phi_+$={phi_plus:.2f}, $\ell$={ell:.1f}, $\phi_0$={phi0:.2f}")
+    fig.axes[0].legend()
+    fig.axes[0].set_xlabel("distance ahead of the rod layer")
+    fig.tight_layout()
+    fig.savefig(out("layer_profile.png"), dpi=150)
+    plt.close("all")
 
     box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
     ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)

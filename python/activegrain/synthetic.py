@@ -5,6 +5,7 @@ simulation. Lengths in bead diameters unless stated; rods are the paper's: 4.5 l
 tapered from 1.1 (tail) to 0.7 (nose), built from ``n_spheres`` overlapping spheres.
 """
 import numpy as np
+from scipy.spatial import cKDTree
 
 from .geometry import Box
 from .io import Frame
@@ -149,6 +150,43 @@ def phase_configuration(phase, seed=0, length=124.0, width=31.0):
         raise ValueError(f"unknown phase '{phase}'")
     beads = remove_overlaps(beads, box, centres, axes)
     return make_frame(box, beads, 0.5, centres, axes)
+
+
+def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=300):
+    """Beads drawn with local area fraction ``phi_of_x`` (inverse-CDF sampling along x),
+    then pushed apart (at most ``sweeps`` sweeps) until no two overlap and none overlaps
+    a fixed obstacle disc: a disordered, liquid-like packing with the requested profile."""
+    lo, L = np.asarray(box.lo[:2]), box.lengths[:2]
+    xs = np.linspace(lo[0], lo[0] + L[0], 2001)
+    dens = np.array([phi_of_x(x) for x in xs])
+    n = int(round(np.trapz(dens, xs) * L[1] / (np.pi * r * r)))
+    cdf = np.concatenate([[0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(xs))])
+    x = np.interp(rng.uniform(0, cdf[-1], n), cdf, xs)
+    xy = np.column_stack([x, rng.uniform(lo[1] + r, lo[1] + L[1] - r, n)])
+    obstacles = np.asarray(obstacles, float).reshape(-1, 2)
+    obstacle_r = np.asarray(obstacle_r, float)
+    for _ in range(sweeps):
+        pts = np.concatenate([xy, obstacles])
+        rad = np.concatenate([np.full(n, r), obstacle_r])
+        # periodic axes wrap in the tree; a wall axis gets a box too large to wrap
+        tree = cKDTree(box.wrap(pts) - lo, boxsize=[L[k] if box.periodic[k] else 11 * L[k] for k in range(2)])
+        pairs = tree.query_pairs(2 * max(r, rad.max()), output_type="ndarray")
+        d = box.minimum_image(pts[pairs[:, 1]] - pts[pairs[:, 0]])
+        dist = np.linalg.norm(d, axis=1)
+        overlap = rad[pairs[:, 0]] + rad[pairs[:, 1]] - dist
+        hit = overlap > 0
+        if not hit.any():
+            break
+        push = 0.5 * (overlap[hit] + 1e-3)[:, None] * d[hit] / np.maximum(dist[hit], 1e-9)[:, None]
+        move = np.zeros_like(pts)
+        np.add.at(move, pairs[hit, 0], -push)
+        np.add.at(move, pairs[hit, 1], push)
+        xy += move[:n]
+        for k in range(2):
+            if not box.periodic[k]:
+                xy[:, k] = np.clip(xy[:, k], lo[k] + r, lo[k] + L[k] - r)
+        xy = box.wrap(xy)
+    return xy
 
 
 def persistent_walk(n_steps, dt, speed, tau, rng, start=(0.0, 0.0)):

@@ -117,3 +117,18 @@ def test_map_command_table(condensed_dump, tmp_path):
     assert np.allclose(phi[0], prof)  # a one-row map is the x profile
     rc, _ = run(["map", condensed_dump, "--length-unit", "1e-3", "-o", str(tmp_path / "m.png")])
     assert rc == 0 and (tmp_path / "m.png").stat().st_size > 1000
+
+
+def test_profile_relative_to_layer_follows_the_moving_layer(condensed_dump):
+    rc, text = run(["profile", condensed_dump, "--length-unit", "1e-3", "--relative-to-layer",
+                    "--extent", "60", "--bins", "30", "--fit", "4", "56"])
+    assert rc == 0, text
+    lines = text.splitlines()
+    rows = np.array([l.split() for l in lines[1:] if not l.startswith("#")], float)
+    d, phi = rows[:, 0], rows[:, 1]
+    # the layer moves by 2 d per frame; in its frame the close-packed block stays put
+    assert np.allclose(phi[(d > 4) & (d < 60)], np.pi / 4, rtol=1e-6)
+    assert np.all(phi[(d < -4) & (d > -24)] < 0.25)
+    assert lines[-1].startswith("# eq. 5 fit:")
+    rc, _ = run(["profile", condensed_dump, "--fit", "4", "56"])
+    assert rc == 1  # --fit needs --relative-to-layer

@@ -123,6 +123,11 @@ def test_condensed_layer_in_an_annulus():
     fr = S.make_frame(box, beads, 0.5, centres, axes)
     res = A.classify_phase(fr, ann)
     assert res.observables["layer_coord"] == "theta"
+    prof = A.layer_profile(fr, ann, bins=36)  # arc lengths at the mid radius, full turn
+    arc = 0.5 * (ann.r_in + ann.r_out)
+    areas = 0.5 * np.diff(prof.edges) / arc * (ann.r_out ** 2 - ann.r_in ** 2)
+    assert np.sum(prof.fraction * areas) == pytest.approx(len(beads) * np.pi * 0.25, rel=1e-9)
+    assert np.mean(prof.fraction[(prof.centres > 3) & (prof.centres < 20)]) > 0.6
     assert res.observables["phi_ahead"] > res.observables["phi_behind"] + 0.3
     assert res.phase == "condensed"
 
@@ -136,3 +141,45 @@ def test_beads_only_frame_is_isotropic_and_has_no_layer():
     assert np.isnan(A.gradient_alignment(fr, g)[1])
     with pytest.raises(ValueError, match="no rods"):
         A.layer_sides(fr, g)
+
+
+def _strip_beads(d_edges, phi_target, x_layer, width, length):
+    """Beads in strips [d_k, d_k+1) at distance d ahead of x_layer: 4 columns per 4-wide
+    strip, rows chosen to approach phi_target(d); returns beads and the exact fractions."""
+    beads, exact = [], []
+    for a, b in zip(d_edges[:-1], d_edges[1:]):
+        w = b - a
+        n_rows = int(min(np.floor(width), round(phi_target(0.5 * (a + b)) * w * width / (np.pi / 4) / w)))
+        xs = x_layer + a + (np.arange(int(w)) + 0.5)
+        ys = (np.arange(n_rows) + 0.5) * width / n_rows
+        X, Y = np.meshgrid(xs, ys)
+        beads.append(np.column_stack([np.mod(X.ravel(), length), Y.ravel()]))
+        exact.append(int(w) * n_rows * np.pi / 4 / (w * width))
+    return np.concatenate(beads), np.array(exact)
+
+
+def test_profile_ahead_of_a_layer_and_exponential_fit():
+    length, width, x_layer, ell = 120.0, 31.0, 30.0, 10.0
+    target = lambda d: 0.35 + 0.4 * np.exp(-(d - 4) / ell) if d > 0 else 0.35
+    ahead = np.arange(4.0, 60.0, 4.0)
+    behind = -ahead[::-1]
+    b1, e1 = _strip_beads(ahead, target, x_layer, width, length)
+    b2, e2 = _strip_beads(behind, target, x_layer, width, length)
+    ys = np.arange(1.0, width - 0.5, 1.15)
+    centres = np.column_stack([np.full(len(ys), x_layer), ys])
+    box = S.channel_box(length, width)
+    fr = S.make_frame(box, np.concatenate([b1, b2]), 0.5, centres, np.tile([1.0, 0.0], (len(ys), 1)))
+    g = geometry_from_box(box)
+    prof = A.layer_profile(fr, g, extent=60.0, bins=30)
+    d = prof.centres
+    assert np.allclose(prof.fraction[(d > 4) & (d < 56)], e1, rtol=1e-9)
+    assert np.allclose(prof.fraction[(d < -4) & (d > -56)], e2, rtol=1e-9)
+    phi_plus, ell_fit, phi0 = A.fit_layer_exponential(prof, 4.0, 56.0)
+    assert ell_fit == pytest.approx(ell, rel=0.1)
+    assert phi0 == pytest.approx(0.35, abs=0.02)
+    assert phi_plus == pytest.approx(0.35 + 0.4 * np.exp(4 / ell), abs=0.05)
+    # mirrored (layer pointing -x): the same profile ahead
+    mirrored = S.make_frame(box, np.column_stack([np.mod(2 * x_layer - fr.beads()[0][:, 0], length),
+                                                  fr.beads()[0][:, 1]]), 0.5, centres,
+                            np.tile([-1.0, 0.0], (len(ys), 1)))
+    assert np.allclose(A.layer_profile(mirrored, g, extent=60.0, bins=30).fraction, prof.fraction, rtol=1e-9)
