@@ -115,7 +115,8 @@ def cmd_phase(args, out):
 
 def cmd_motility(args, out):
     tracks = motility.rod_tracks(_frames(args))
-    out.write(json.dumps(motility.motility_summary(tracks), indent=1) + "\n")
+    summary = motility.motility_summary(tracks, args.max_lag, use_velocities=not args.from_positions)
+    out.write(json.dumps(summary, indent=1) + "\n")
 
 
 def cmd_snapshot(args, out):
@@ -209,6 +210,9 @@ def build_parser():
 
     p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
     _add_dump_args(p)
+    p.add_argument("--from-positions", action="store_true",
+                   help="speeds from centre displacements between frames, not dumped velocities")
+    p.add_argument("--max-lag", type=int, help="largest lag (frames) for MSD and correlation")
     p.set_defaults(func=cmd_motility)
 
     p = sub.add_parser("snapshot", help="draw one frame")

@@ -46,14 +46,14 @@ def rod_tracks(frames):
     return RodTracks(np.array(t), ids, c, np.array(axes), v)
 
 
-def axial_speed(tracks):
+def axial_speed(tracks, use_velocities=True):
     """Speed along the rod axis, v . p, per frame and rod (n_frames, n_rods).
 
-    Uses the dumped velocities when present; otherwise the centre displacement between
-    frames (central differences) -- which averages over the vibration if frames are
-    further apart than a drive period.
+    Uses the dumped velocities when present and ``use_velocities``; otherwise the centre
+    displacement between frames (central differences), which averages out the vibration
+    when frames are further apart than a drive period.
     """
-    if tracks.velocity is not None:
+    if use_velocities and tracks.velocity is not None:
         v = tracks.velocity
     else:
         v = np.gradient(tracks.centre, tracks.t, axis=0)
@@ -113,10 +113,10 @@ def fit_persistent_walk(lag_t, msd_values):
     return float(v), float(tau)
 
 
-def motility_summary(tracks, max_lag=None):
+def motility_summary(tracks, max_lag=None, use_velocities=True):
     """Speed along the axis (mean, s.d.), persistence time from the orientation
     correlation, and (speed, tau) fitted to the MSD."""
-    u = axial_speed(tracks)
+    u = axial_speed(tracks, use_velocities)
     dt = float(np.median(np.diff(tracks.t)))
     lags, C = orientation_correlation(tracks.axis, max_lag)
     lags_m, M = msd(tracks.centre, max_lag)

@@ -132,3 +132,25 @@ def test_profile_relative_to_layer_follows_the_moving_layer(condensed_dump):
     assert lines[-1].startswith("# eq. 5 fit:")
     rc, _ = run(["profile", condensed_dump, "--fit", "4", "56"])
     assert rc == 1  # --fit needs --relative-to-layer
+
+
+def test_motility_command(tmp_path):
+    import json
+    rng = np.random.default_rng(11)
+    box = S.square_box(40)
+    frames = []
+    for k in range(6):  # six rods, each its own walk
+        t, c, p = S.persistent_walk(300, 0.05, 3.0, 1.0, rng, start=(6.0 * k + 3, 20.0))
+        frames.append((c, p))
+    dump = tmp_path / "walks.dump"
+    write_dump(dump, [S.make_frame(box, [], 0.5, [f[0][i] for f in frames], [f[1][i] for f in frames],
+                                   rod_vel=[3.0 * f[1][i] for f in frames], step=i).scaled(1e-3)
+                      for i in range(300)])
+    rc, text = run(["motility", str(dump), "--length-unit", "1e-3", "--timestep", "0.05", "--max-lag", "100"])
+    assert rc == 0, text
+    summary = json.loads(text)
+    assert summary["axial_speed_mean"] == pytest.approx(3.0, rel=1e-3)
+    assert summary["persistence_time"] == pytest.approx(1.0, rel=0.3)  # 6 short walks: noisy
+    rc, text = run(["motility", str(dump), "--length-unit", "1e-3", "--timestep", "0.05", "--from-positions"])
+    # finite differences over a turning path: biased low by about (1 - exp(-dt/tau))/2 ~ 2.5 %
+    assert json.loads(text)["axial_speed_mean"] == pytest.approx(3.0, rel=0.05)
