@@ -128,9 +128,9 @@ def polar_order(vectors):
 
 def tangential_polarization(rods, annulus):
     """Mean of p . e_theta over the rods of an annulus (+1: all counter-clockwise)."""
-    d = rods.centre - np.asarray(annulus.centre)
-    e_theta = np.stack([-d[:, 1], d[:, 0]], 1) / np.linalg.norm(d, axis=1)[:, None]
-    return float(np.mean(np.sum(rods.axis * e_theta, axis=1))) if len(rods) else 0.0
+    if len(rods) == 0:
+        return 0.0
+    return float(np.mean(np.sum(rods.axis * annulus.tangent(rods.centre), axis=1)))
 
 
 def polarization(frame, geometry=None):
@@ -158,8 +158,7 @@ def smoothed_bead_field(frame, geometry, cell=None, smoothing=1.0):
     Gaussian-smoothed over ``smoothing`` pixels (periodic along periodic axes)."""
     _, r, _ = frame.beads()
     cell = cell or 4 * float(np.median(r))
-    L = geometry.box.lengths if not isinstance(geometry, Annulus) else np.full(2, 2 * geometry.r_out)
-    bins = tuple(max(1, int(round(L[k] / cell))) for k in range(2))
+    bins = tuple(max(1, int(round(L / cell))) for L in geometry.extent)
     xe, ye, phi = area_fraction_map(frame, geometry, bins, "beads")
     valid = np.isfinite(phi)
     modes = ["wrap" if geometry.is_periodic(c) else "nearest" for c in "xy"]
@@ -241,9 +240,7 @@ def _layer_coordinate(geometry, rods):
 def _along(geometry, rods, coord):
     """Each rod's axis component along increasing ``coord``."""
     if coord == "theta":
-        d = rods.centre - np.asarray(geometry.centre)
-        e = np.stack([-d[:, 1], d[:, 0]], 1) / np.linalg.norm(d, axis=1)[:, None]
-        return np.sum(rods.axis * e, axis=1)
+        return np.sum(rods.axis * geometry.tangent(rods.centre), axis=1)
     return rods.axis[:, "xy".index(coord)]
 
 
@@ -266,7 +263,7 @@ def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None,
         raise ValueError("layer_sides: the frame has no rods")
     L = float(np.median(rods.length))
     coord = _layer_coordinate(geometry, rods)
-    to_q = 1.0 / (0.5 * (geometry.r_in + geometry.r_out)) if coord == "theta" else 1.0
+    to_q = 1.0 / geometry.length_per_unit(coord)
     halfwidth, gap, window = (halfwidth or L) * to_q, (gap or L) * to_q, (window or 5 * L) * to_q
     lo, hi = geometry.coordinate_range(coord)
     periodic = geometry.is_periodic(coord)
@@ -331,7 +328,7 @@ def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="be
     layer = layer or layer_sides(frame, geometry)
     coord = layer.coord
     lo, hi = geometry.coordinate_range(coord)
-    arc = 0.5 * (geometry.r_in + geometry.r_out) if coord == "theta" else 1.0
+    arc = geometry.length_per_unit(coord)
     periodic = geometry.is_periodic(coord)
     extent = extent or 0.5 * (hi - lo) * arc
     edges = np.linspace(-extent, extent, int(bins) + 1)
@@ -388,8 +385,7 @@ def segregation_index(frame, geometry, cell=None):
     """
     rods = frame.rods()
     cell = cell or 2 * float(np.median(rods.length))
-    L = geometry.box.lengths if not isinstance(geometry, Annulus) else np.full(2, 2 * geometry.r_out)
-    bins = tuple(max(1, int(round(L[k] / cell))) for k in range(2))
+    bins = tuple(max(1, int(round(L / cell))) for L in geometry.extent)
     _, _, pb = area_fraction_map(frame, geometry, bins, "beads")
     _, _, pr = area_fraction_map(frame, geometry, bins, "rods")
     ok = np.isfinite(pb) & np.isfinite(pr)

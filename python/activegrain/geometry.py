@@ -84,6 +84,15 @@ class Geometry:
     def is_periodic(self, name):
         return name in ("x", "y") and bool(self.box.periodic["xy".index(name)])
 
+    @property
+    def extent(self):
+        """(width, height) of the cell's bounding rectangle."""
+        return self.box.lengths[:2]
+
+    def length_per_unit(self, name):
+        """Length per unit of coordinate ``name`` (the mid radius for an annulus's theta)."""
+        return 1.0
+
     def bin_areas(self, name, edges):
         """Area of the cell between consecutive ``edges`` of coordinate ``name``."""
         k = "xy".index(name)
@@ -153,6 +162,18 @@ class Annulus(Geometry):
 
     def is_periodic(self, name):
         return name == "theta"
+
+    @property
+    def extent(self):
+        return np.full(2, 2.0 * self.r_out)
+
+    def length_per_unit(self, name):
+        return 0.5 * (self.r_in + self.r_out) if name == "theta" else 1.0
+
+    def tangent(self, xy):
+        """Unit vectors e_theta (counter-clockwise) at points ``xy``."""
+        d = np.asarray(xy, float) - np.asarray(self.centre, float)
+        return np.stack([-d[..., 1], d[..., 0]], -1) / np.linalg.norm(d, axis=-1)[..., None]
 
     def bin_areas(self, name, edges):
         edges = np.asarray(edges, float)

@@ -80,7 +80,7 @@ def _draw_cell(ax, frame, geometry):
 
 def snapshot(frame, geometry=None, path=None, width=10.0, title=None):
     """Figure of one frame; saved to ``path`` if given. Returns the figure."""
-    L = frame.box.lengths[:2] if not isinstance(geometry, Annulus) else np.full(2, 2 * geometry.r_out)
+    L = frame.box.lengths[:2] if geometry is None else geometry.extent
     fig, ax = plt.subplots(figsize=(width, max(1.5, width * L[1] / L[0]) + 0.6))
     draw_snapshot(ax, frame, geometry)
     ax.set_title(title or f"step {frame.step}")
