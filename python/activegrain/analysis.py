@@ -296,7 +296,7 @@ def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None,
         counts = ndimage.gaussian_filter1d(counts.astype(float), 1.0, mode="wrap" if periodic else "nearest")
         peak = 0.5 * (edges[:-1] + edges[1:])[np.argmax(counts)]
         near = free & (np.abs(rel(q, peak)) <= halfwidth)
-        position = peak + np.mean(rel(q[near], peak))
+        position = peak + (np.mean(rel(q[near], peak)) if near.any() else 0.0)
         if periodic:
             position = lo + np.mod(position - lo, period)
         members = free & (np.abs(rel(q, position)) <= halfwidth)

@@ -15,7 +15,7 @@ from . import analysis, io, motility, theory
 from .geometry import geometry_from_box
 
 
-def _add_dump_args(p, frames=True):
+def _add_dump_args(p):
     p.add_argument("dump", help="LAMMPS text dump (id mol type radius x y z [vx vy vz])")
     p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
     p.add_argument("--centre", type=float, nargs=2, help="annulus centre (default: box centre)")
@@ -23,17 +23,16 @@ def _add_dump_args(p, frames=True):
     p.add_argument("--r-out", type=float, help="annulus outer radius")
     p.add_argument("--length-unit", type=float, default=1.0, help="divide lengths by this")
     p.add_argument("--timestep", type=float, default=1.0, help="time per MD step")
-    if frames:
-        p.add_argument("--frame", type=int, default=None,
-                       help="only this frame (python index, -1 = last); default all")
-        p.add_argument("--every", type=int, default=None, help="every n-th frame")
+    p.add_argument("--frame", type=int, default=None,
+                   help="only this frame (python index, -1 = last); default all")
+    p.add_argument("--every", type=int, default=None, help="every n-th frame")
 
 
 def _frames(args):
     kw = dict(length_unit=args.length_unit, timestep=args.timestep)
-    if getattr(args, "frame", None) is not None:
+    if args.frame is not None:
         return [io.read_frame(args.dump, args.frame, **kw)]
-    return list(io.read_dump(args.dump, every=getattr(args, "every", None), **kw))
+    return list(io.read_dump(args.dump, every=args.every, **kw))
 
 
 def _geometry(args, frame):
@@ -44,13 +43,17 @@ def _geometry(args, frame):
 
 
 def _print_table(rows, out):
-    keys = list(rows[0])
+    """Whitespace-separated table; a column missing in a row (e.g. no rods) prints nan."""
+    keys = list(dict.fromkeys(k for r in rows for k in r))
     out.write(" ".join(keys) + "\n")
     for r in rows:
-        out.write(" ".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
+        vals = (r.get(k, float("nan")) for k in keys)
+        out.write(" ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in vals) + "\n")
 
 
 def cmd_profile(args, out):
+    if args.fit is not None and not args.relative_to_layer:
+        raise ValueError("--fit needs --relative-to-layer")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
     if args.relative_to_layer:
@@ -64,8 +67,6 @@ def cmd_profile(args, out):
     avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
     _print_table([{name: float(c), "area_fraction": float(v)} for c, v in zip(avg.centres, mean)], out)
     if args.fit is not None:
-        if not args.relative_to_layer:
-            raise ValueError("--fit needs --relative-to-layer")
         phi_plus, ell, phi0 = analysis.fit_layer_exponential(avg, args.fit[0], args.fit[1])
         out.write(f"# eq. 5 fit: phi_plus {phi_plus:.6g} ell {ell:.6g} phi0 {phi0:.6g}\n")
     if args.plot:
