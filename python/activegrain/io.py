@@ -124,8 +124,10 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
         pos = ts.positions.astype(np.float64) + lo  # MDAnalysis moves the box to the origin
         vel = ts.velocities.astype(np.float64) if ts.has_velocities else None
         step = int(ts.data["step"])
+        # positions are kept wrapped (dumps may carry xu/yu/zu or image flags); rods and
+        # trajectories are unwrapped by the minimum image where needed
         frame = Frame(step, step * timestep, box, ids, mol, types, static["radius"].copy(),
-                      box.wrap(pos) if unwrap else pos, vel)
+                      box.wrap(pos), vel)
         yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
 
 

@@ -90,8 +90,8 @@ def nonreciprocity_condition(p):
 
 
 def fastest_mode(p, k_max=None, n=2001, expanded=True):
-    """(k*, Re lambda(k*)) of the fastest-growing mode on 0 < k <= k_max (default:
-    where the k^4 term of the expansion overtakes the k^2 term, sqrt(a/K))."""
+    """(k*, Re lambda(k*)) of the fastest-growing mode on 0 < k <= k_max (default
+    2 sqrt(a/K), past which the expansion's k^4 terms dominate its k^2 terms)."""
     k_max = k_max or 2 * np.sqrt(p.a / p.K)
     k = np.linspace(0, k_max, n)[1:]
     lam = growth_rates(k, p, expanded)[:, 0].real

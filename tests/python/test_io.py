@@ -58,6 +58,16 @@ def test_image_flags_and_rod_straddling_the_boundary(tmp_path):
     assert rods.length[0] == pytest.approx(S.ROD_LENGTH, rel=1e-6)
 
 
+def test_unwrapped_coordinate_columns_are_wrapped(tmp_path):
+    p = tmp_path / "xu.dump"
+    p.write_text("ITEM: TIMESTEP\n3\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp ff pp\n"
+                 "-5 5\n0 4\n0 1\nITEM: ATOMS id mol type radius xu yu zu\n"
+                 "2 0 1 0.5 13.0 2.0 0.5\n1 0 1 0.5 -6.0 1.0 0.5\n")
+    fr = read_frame(str(p))
+    assert np.allclose(fr.pos[:, :2], [(4.0, 1.0), (3.0, 2.0)], atol=1e-5)  # sorted by id, wrapped in x
+    assert fr.box.lo == (-5.0, 0.0, 0.0) and fr.vel is None
+
+
 def test_missing_columns_and_not_a_dump(tmp_path):
     p = tmp_path / "bad.dump"
     p.write_text("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
