@@ -103,59 +103,68 @@ def remove_overlaps(bead_xy, box, rod_centres, rod_axes, bead_r=0.5, rod=None):
     return bead_xy[keep]
 
 
-def phase_configuration(phase, seed=0, length=124.0, width=31.0):
+def _row_of_rods(x, width, direction):
+    ys = np.arange(1.0, width - 0.5, 1.15)  # side by side, tails (1.1 wide) just apart
+    return np.column_stack([np.full(len(ys), x), ys]), np.tile([direction, 0.0], (len(ys), 1))
+
+
+def phase_configuration(phase, seed=0, length=124.0, width=31.0, packing="lattice"):
     """A channel configuration built to be in ``phase``.
 
-    isotropic: beads uniform (phi_b ~ 0.6), rods random positions and axes;
+    isotropic: beads uniform (phi_b = 0.6), rods random positions and axes;
     flock: the same with all rods pointing +x (within +-15 degrees);
     segregated: rods crowded at random orientations into a bead-free quarter;
     condensed: one width-spanning row of rods pointing +x, beads close-packed ahead of
-    it (phi_b ~ 0.78) and dilute (~0.2) elsewhere;
+    it (phi_b = pi/4) and dilute (pi/16) elsewhere;
     trapped: two such rows pointing at each other with the close-packed beads between
     them (a condensed phase held by two active layers).
+
+    ``packing='lattice'``: beads on square lattices with exactly these area fractions;
+    ``'relaxed'``: disordered packings with the same area-fraction profile
+    (:func:`relaxed_beads`).
     """
     rng = np.random.default_rng(seed)
     box = channel_box(length, width)
-    a = spacing_for(0.6)
+    uniform, dense, dilute = 0.6, np.pi / 4, np.pi / 16
     if phase in ("isotropic", "flock"):
         axes = None
         if phase == "flock":
             ang = rng.uniform(-np.pi / 12, np.pi / 12, 20)
             axes = np.column_stack([np.cos(ang), np.sin(ang)])
         centres, axes = random_rods(20, (0, length, 3, width - 3), rng, axes)
-        beads = lattice_beads(0, length, 0, width, a)
+        regions = [(0, length, uniform)]
     elif phase == "segregated":
         centres, axes = random_rods(20, (2, length / 4, 3, width - 3), rng, None)
-        beads = lattice_beads(length / 4 + 3, length, 0, width, a)
+        regions = [(length / 4 + 3, length, uniform)]
     elif phase == "condensed":
         x0 = 30.0
-        ys = np.arange(1.0, width - 0.5, 1.15)
-        centres = np.column_stack([np.full(len(ys), x0), ys])
-        axes = np.tile([1.0, 0.0], (len(ys), 1))
-        dense = lattice_beads(x0 + 3, x0 + 3 + 1.0 * 60, 0, width, 1.0)
-        dilute = np.concatenate([lattice_beads(x0 + 63, length, 0, width, 2.0),
-                                 lattice_beads(0, x0 - 3, 0, width, 2.0)])
-        beads = np.concatenate([dense, dilute])
+        centres, axes = _row_of_rods(x0, width, 1.0)
+        regions = [(0, x0 - 3, dilute), (x0 + 3, x0 + 63, dense), (x0 + 63, length, dilute)]
     elif phase == "trapped":
         x0, x1 = 30.0, 70.0
-        ys = np.arange(1.0, width - 0.5, 1.15)
-        centres = np.concatenate([np.column_stack([np.full(len(ys), x0), ys]),
-                                  np.column_stack([np.full(len(ys), x1), ys])])
-        axes = np.concatenate([np.tile([1.0, 0.0], (len(ys), 1)), np.tile([-1.0, 0.0], (len(ys), 1))])
-        dense = lattice_beads(x0 + 3, x1 - 3, 0, width, 1.0)
-        dilute = np.concatenate([lattice_beads(x1 + 3, length, 0, width, 2.0),
-                                 lattice_beads(0, x0 - 3, 0, width, 2.0)])
-        beads = np.concatenate([dense, dilute])
+        (c0, a0), (c1, a1) = _row_of_rods(x0, width, 1.0), _row_of_rods(x1, width, -1.0)
+        centres, axes = np.concatenate([c0, c1]), np.concatenate([a0, a1])
+        regions = [(0, x0 - 3, dilute), (x0 + 3, x1 - 3, dense), (x1 + 3, length, dilute)]
     else:
         raise ValueError(f"unknown phase '{phase}'")
-    beads = remove_overlaps(beads, box, centres, axes)
+    if packing == "lattice":
+        beads = np.concatenate([lattice_beads(a, b, 0, width, spacing_for(phi)) for a, b, phi in regions])
+        beads = remove_overlaps(beads, box, centres, axes)
+    elif packing == "relaxed":
+        s, r = rod_spheres()
+        spheres = (centres[:, None, :] + s[None, :, None] * axes[:, None, :]).reshape(-1, 2)
+        phi_of_x = lambda x: sum(phi for a, b, phi in regions if a <= x < b)
+        beads = relaxed_beads(rng, box, phi_of_x, spheres, np.tile(r, len(centres)))
+    else:
+        raise ValueError(f"unknown packing '{packing}' (lattice or relaxed)")
     return make_frame(box, beads, 0.5, centres, axes)
 
 
-def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=300):
+def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=2000, tol=1e-3):
     """Beads drawn with local area fraction ``phi_of_x`` (inverse-CDF sampling along x),
-    then pushed apart (at most ``sweeps`` sweeps) until no two overlap and none overlaps
-    a fixed obstacle disc: a disordered, liquid-like packing with the requested profile."""
+    then pushed apart (at most ``sweeps`` sweeps) until no two overlap by more than
+    ``tol`` times the diameter and none overlaps a fixed obstacle disc: a disordered,
+    liquid-like packing with the requested profile (up to phi ~ 0.8)."""
     lo, L = np.asarray(box.lo[:2]), box.lengths[:2]
     xs = np.linspace(lo[0], lo[0] + L[0], 2001)
     dens = np.array([phi_of_x(x) for x in xs])
@@ -174,13 +183,17 @@ def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps
         d = box.minimum_image(pts[pairs[:, 1]] - pts[pairs[:, 0]])
         dist = np.linalg.norm(d, axis=1)
         overlap = rad[pairs[:, 0]] + rad[pairs[:, 1]] - dist
-        hit = overlap > 0
+        i, j = pairs[:, 0], pairs[:, 1]
+        hit = (overlap > tol * 2 * r) & ((i < n) | (j < n))  # obstacles may overlap each other
         if not hit.any():
             break
-        push = 0.5 * (overlap[hit] + 1e-3)[:, None] * d[hit] / np.maximum(dist[hit], 1e-9)[:, None]
+        i, j, d, dist, overlap = i[hit], j[hit], d[hit], dist[hit], overlap[hit]
+        # a bead facing a fixed obstacle takes the whole push, two beads half each
+        share = np.where((i < n) & (j < n), 0.5, 1.0)
+        push = (share * (overlap + tol * 2 * r))[:, None] * d / np.maximum(dist, 1e-9)[:, None]
         move = np.zeros_like(pts)
-        np.add.at(move, pairs[hit, 0], -push)
-        np.add.at(move, pairs[hit, 1], push)
+        np.add.at(move, i, -push)
+        np.add.at(move, j, push)
         xy += move[:n]
         for k in range(2):
             if not box.periodic[k]:

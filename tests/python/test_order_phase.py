@@ -1,6 +1,7 @@
 """Polarization, rods vs the bead gradient, layer sides and the phase classifier."""
 import numpy as np
 import pytest
+from scipy.spatial import cKDTree
 
 from activegrain import analysis as A, synthetic as S
 from activegrain.geometry import Annulus, Box, geometry_from_box
@@ -78,6 +79,16 @@ def test_layer_sides_measure_both_densities():
 def test_classifier_recognises_constructed_phases(phase, seed):
     fr = S.phase_configuration(phase, seed=seed)
     assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == phase
+
+
+@pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed", "trapped"])
+def test_classifier_on_disordered_packings(phase):
+    fr = S.phase_configuration(phase, seed=7, packing="relaxed")
+    xy, r, _ = fr.beads()
+    tree = cKDTree(xy - fr.box.lo[:2], boxsize=[fr.box.lengths[0], 1e3])  # periodic along x
+    assert len(tree.query_pairs(0.99)) == 0  # a real packing: no overlapping beads
+    expect = "condensed" if phase == "trapped" else phase
+    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == expect
 
 
 def test_two_opposed_layers_trap_a_condensate():
