@@ -194,3 +194,38 @@ def test_profile_ahead_of_a_layer_and_exponential_fit():
                                                   fr.beads()[0][:, 1]]), 0.5, centres,
                             np.tile([-1.0, 0.0], (len(ys), 1)))
     assert np.allclose(A.layer_profile(mirrored, g, extent=60.0, bins=30).fraction, prof.fraction, rtol=1e-9)
+
+
+def test_layer_along_y_in_a_periodic_box():
+    box = S.square_box(60)
+    xs = np.arange(1.0, 59.5, 1.15)
+    centres = np.column_stack([xs, np.full(len(xs), 20.0)])
+    axes = np.tile([0.0, -1.0], (len(xs), 1))  # pointing -y: the dense side is below
+    beads = np.concatenate([S.lattice_beads(0, 60, 0, 17, 1.0), S.lattice_beads(0, 60, 23, 60, 2.0)])
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    layer = A.layer_sides(fr, geometry_from_box(box))
+    assert (layer.coord, layer.direction) == ("y", -1)
+    assert layer.position == pytest.approx(20.0)
+    # behind: 11 whole dilute rows in y 24.5..47
+    assert layer.phi_behind == pytest.approx(11 * 30 * np.pi / 4 / (22.5 * 60))
+    # ahead: y 15.5 down to -7, wrapping into 53..60: 15.5 dense rows of 60, 3 dilute rows of 30
+    assert layer.phi_ahead == pytest.approx((15.5 * 60 + 3 * 30) * np.pi / 4 / (22.5 * 60), rel=2e-3)
+
+
+def test_layer_windows_are_clipped_at_walls_of_a_rectangle():
+    box = Box((0.0, 0.0, 0.0), (40.0, 20.0, 1.12), (False, False, False))
+    ys = np.arange(1.0, 19.5, 1.15)
+    centres = np.column_stack([np.full(len(ys), 30.0), ys])
+    axes = np.tile([1.0, 0.0], (len(ys), 1))
+    beads = np.concatenate([S.lattice_beads(33, 40, 0, 20, 1.0), S.lattice_beads(0, 27, 0, 20, 2.0)])
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    g = geometry_from_box(box)
+    layer = A.layer_sides(fr, g)
+    assert layer.coord == "x" and layer.direction == 1
+    # the window ahead (34.5..57) ends at the wall x = 40: the fraction is over 34.5..40 only
+    assert layer.phi_ahead == pytest.approx(np.pi / 4, rel=0.05)
+    assert layer.phi_behind == pytest.approx(np.pi / 16, rel=0.05)
+    # beads pressed slightly into a wall keep their whole area in the edge bin
+    fr2 = S.make_frame(box, [(0.3, 10.0), (39.8, 10.0)], 0.5)
+    p = A.area_fraction_profile(fr2, g, "x", 4)
+    assert np.sum(p.fraction * g.bin_areas("x", p.edges)) == pytest.approx(2 * np.pi * 0.25)
