@@ -186,17 +186,17 @@ def _pixel_of(edges, q):
     return np.clip(np.searchsorted(edges, q) - 1, 0, len(edges) - 2)
 
 
-def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
-    """How rods point relative to the bead-density gradient.
+def rod_environment(frame, geometry, cell=None, smoothing=1.0):
+    """Where the rods sit in the bead medium.
 
-    Returns ``(cos, mean_cos)``: per rod, the cosine of the angle between its axis p and
-    the gradient of the smoothed bead area fraction at its centre (NaN where the gradient
-    vanishes), and their mean. Positive: rods point from low to high bead density (the
-    paper's A > 0).
+    Per rod, from the smoothed bead area fraction (:func:`smoothed_bead_field`) at its
+    centre: ``phi_b`` (local bead area fraction), ``gradient`` ((n, 2), per unit length)
+    and ``cos`` (cosine between the rod axis p and the gradient; NaN where the gradient
+    vanishes). Returned as a dict of arrays.
     """
     rods = frame.rods()
     if len(rods) == 0:
-        return np.zeros(0), float("nan")
+        return {"phi_b": np.zeros(0), "gradient": np.zeros((0, 2)), "cos": np.zeros(0)}
     xe, ye, field = smoothed_bead_field(frame, geometry, cell, smoothing)
     f = np.nan_to_num(field, nan=np.nanmean(field))
     gx, gy = _gradient(f, xe[1] - xe[0], ye[1] - ye[0],
@@ -206,6 +206,18 @@ def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
     norm = np.linalg.norm(g, axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         cos = np.where(norm > 1e-12, np.sum(g * rods.axis, 1) / norm, np.nan)
+    return {"phi_b": f[i, j], "gradient": g, "cos": cos}
+
+
+def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
+    """How rods point relative to the bead-density gradient.
+
+    Returns ``(cos, mean_cos)``: per rod, the cosine of the angle between its axis p and
+    the gradient of the smoothed bead area fraction at its centre (NaN where the gradient
+    vanishes), and their mean. Positive: rods point from low to high bead density (the
+    paper's A > 0).
+    """
+    cos = rod_environment(frame, geometry, cell, smoothing)["cos"]
     return cos, float(np.nanmean(cos)) if np.isfinite(cos).any() else float("nan")
 
 

@@ -97,7 +97,10 @@ def cmd_polar(args, out):
     for fr in frames:
         row = {"step": fr.step, "time": fr.time}
         row.update(analysis.polarization(fr, geom))
-        row["gradient_alignment"] = analysis.gradient_alignment(fr, geom)[1]
+        env = analysis.rod_environment(fr, geom)
+        finite = np.isfinite(env["cos"])
+        row["gradient_alignment"] = float(env["cos"][finite].mean()) if finite.any() else float("nan")
+        row["phi_b_at_rods"] = float(env["phi_b"].mean()) if len(env["phi_b"]) else float("nan")
         rows.append(row)
     _print_table(rows, out)
 

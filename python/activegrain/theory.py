@@ -76,7 +76,8 @@ def growth_rates(k, p, expanded=True):
 
 def condensation_condition(p):
     """Paper: with D_rho = D_sigma = D_sigmarho = 0, beads condense (a diffusively growing
-    mode) when A alpha rho0 + B u0 sigma0 > 0."""
+    mode) when A alpha rho0 + B u0 sigma0 > 0. This is the trace of M; it decides alone
+    when det M ~ A D_rhosigma u0 sigma0 >= 0 (otherwise a real mode grows regardless)."""
     return p.A * p.alpha * p.rho0 + p.B * p.u0 * p.sigma0 > 0
 
 

@@ -57,6 +57,11 @@ def test_rods_relative_to_bead_gradient(sign):
     fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
     cos, mean = A.gradient_alignment(fr, geometry_from_box(box), smoothing=3.0)
     assert sign * mean > 0.8
+    env = A.rod_environment(fr, geometry_from_box(box), smoothing=3.0)
+    # local bead fraction rises with x like the strips (0.09 at x ~ 12 ... 0.55 at x ~ 108)
+    order = np.argsort(centres[:, 0])
+    assert np.corrcoef(centres[order, 0], env["phi_b"][order])[0, 1] > 0.8
+    assert np.all(env["gradient"][:, 0] > 0)
 
 
 def test_layer_sides_measure_both_densities():
