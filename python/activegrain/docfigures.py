@@ -1,6 +1,6 @@
 """Draw the figures of docs/python.rst from synthetic data.
 
-    python3 -m activegrain.docfigures docs/figures
+    python3 -m activegrain.docfigures docs/figures/python
 """
 import os
 import sys
