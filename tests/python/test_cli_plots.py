@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from activegrain import plotting, synthetic as S, write_dump, read_frame, geometry_from_box
+from activegrain import Box, plotting, synthetic as S, write_dump, read_frame, geometry_from_box
 from activegrain.cli import main
 
 
@@ -154,3 +154,30 @@ def test_motility_command(tmp_path):
     rc, text = run(["motility", str(dump), "--length-unit", "1e-3", "--timestep", "0.05", "--from-positions"])
     # finite differences over a turning path: biased low by about (1 - exp(-dt/tau))/2 ~ 2.5 %
     assert json.loads(text)["axial_speed_mean"] == pytest.approx(3.0, rel=0.05)
+
+
+def test_annulus_geometry_on_the_command_line(tmp_path):
+    box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
+    radii = np.arange(16.0, 27.5, 1.15)
+    centres = np.column_stack([radii, np.zeros_like(radii)])
+    axes = np.tile([0.0, 1.0], (len(radii), 1))
+    ang = np.linspace(0.3, 2.5, 400)
+    ring = 21.0 * np.column_stack([np.cos(ang), np.sin(ang)])  # beads only ahead of the layer
+    fr = S.make_frame(box, ring, 0.5, centres, axes).scaled(1e-3)
+    dump = tmp_path / "annulus.dump"
+    write_dump(dump, [fr])
+    geo = ["--geometry", "annulus", "--r-in", "0.015", "--r-out", "0.028", "--centre", "0", "0",
+           "--length-unit", "1e-3"]
+    rc, text = run(["profile", str(dump), "--coord", "theta", "--bins", "8"] + geo)
+    assert rc == 0, text
+    rows = np.array([l.split() for l in text.splitlines()[1:]], float)
+    areas = 0.5 * (2 * np.pi / 8) * (28.0 ** 2 - 15.0 ** 2)
+    assert np.sum(rows[:, 1]) * areas == pytest.approx(400 * np.pi * 0.25, rel=1e-5)  # 6 printed digits
+    assert np.all(rows[rows[:, 0] > 3.0, 1] == 0)  # no beads past theta = 2.5 + a bead
+    rc, text = run(["phase", str(dump)] + geo)
+    head, row = text.splitlines()
+    vals = dict(zip(head.split(), row.split()))
+    assert float(vals["P_tangential"]) == pytest.approx(1.0, abs=1e-3)
+    assert float(vals["layer_contrast"]) > 0
+    rc, text = run(["phase", str(dump), "--geometry", "annulus"])
+    assert rc == 1  # an annulus needs its radius
