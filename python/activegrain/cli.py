@@ -163,6 +163,9 @@ def cmd_theory(args, out):
         out.write(f"non-reciprocity condition: {theory.nonreciprocity_condition(p)}\n")
         ks, ls = theory.fastest_mode(p, args.k_max, expanded=not args.full)
         out.write(f"fastest mode: k = {ks:.6g}, Re lambda = {ls:.6g}\n")
+        if args.table:
+            _print_table([{"k": float(ki), "re1": float(l[0].real), "im1": float(l[0].imag),
+                           "re2": float(l[1].real), "im2": float(l[1].imag)} for ki, l in zip(k, lam)], out)
         if args.plot:
             from . import plotting
             plotting.plot_growth_rates(k, lam, args.plot)
@@ -249,6 +252,7 @@ def build_parser():
     p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default 2 sqrt(a/K))")
     p.add_argument("--n-k", type=int, default=400)
     p.add_argument("--full", action="store_true", help="growth: unexpanded 1/(a + K k^2) response")
+    p.add_argument("--table", action="store_true", help="growth: print k and both growth rates")
     p.add_argument("--f", type=float, default=1.0, help="pointforce: force f")
     p.add_argument("--gamma", type=float, default=1.0, help="pointforce: drag per bead")
     p.add_argument("--v0", type=float, default=1.0, help="pointforce: speed of the force")

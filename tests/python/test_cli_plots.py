@@ -70,6 +70,12 @@ def test_theory_commands(tmp_path):
     assert rc == 0
     assert "condensation (A alpha rho0 + B u0 sigma0 > 0): True" in text
     assert "non-reciprocity condition: True" in text
+    rc, text = run(["theory", "growth", "--D_rho", "0.05", "--D_sigma", "0.1", "--B", "0", "--a", "10",
+                    "--table", "--n-k", "11", "--k-max", "2"])
+    rows = np.array([l.split() for l in text.splitlines()[4:]], float)
+    k = rows[:, 0]
+    assert np.allclose(np.sort(rows[:, [1, 3]], axis=1)[:, 1], np.maximum(0.05 * k ** 2 - 0.01 * k ** 4, -0.1 * k ** 2),
+                       atol=1e-6)
     rc, text = run(["theory", "pointforce", "--f", "2", "--rho0", "0.6"])
     assert rc == 0
     assert float(text.split("rho+ = ")[1].split()[0]) == pytest.approx(0.7314170, rel=1e-6)
