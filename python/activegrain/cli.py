@@ -248,7 +248,9 @@ def build_parser():
     p = sub.add_parser("theory", help="linear stability (growth) or moving point force (pointforce)")
     p.add_argument("model", choices=["growth", "pointforce"])
     for name, fld in theory.LinearParameters.__dataclass_fields__.items():
-        p.add_argument(f"--{name}", type=float, default=fld.default, help="growth: model parameter")
+        p.add_argument(f"--{name}", type=float, default=fld.default,
+                       help="bead density (growth: rho0; pointforce: far from the force, number per area)"
+                       if name == "rho0" else "growth: model parameter")
     p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default 2 sqrt(a/K))")
     p.add_argument("--n-k", type=int, default=400)
     p.add_argument("--full", action="store_true", help="growth: unexpanded 1/(a + K k^2) response")
