@@ -1,0 +1,471 @@
+"""Observables of one frame: area fractions, polarization, rods vs the bead gradient,
+the density on both sides of a rod layer, and a phase classifier.
+
+Area fractions count what is covered: every particle's projected shape (a bead's disc,
+a rod's tapered union of discs, counted once) is cut into area quadrature points whose
+weights sum to the exact shape area; a bin's fraction is the weight it receives divided
+by the bin's area inside the cell. The quadrature spacing (``spacing``, default a
+quarter of the smallest particle radius) sets how sharply a particle edge is resolved,
+never the total area.
+"""
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import ndimage
+from scipy.optimize import OptimizeWarning, curve_fit
+
+from .geometry import Annulus
+from .rods import disc_samples
+
+SPECIES = ("beads", "rods", "all")
+
+
+@dataclass
+class Profile:
+    coord: str
+    species: str
+    edges: np.ndarray
+    fraction: np.ndarray
+
+    @property
+    def centres(self):
+        return 0.5 * (self.edges[1:] + self.edges[:-1])
+
+
+def default_spacing(frame):
+    return 0.25 * float(frame.radius.min())
+
+
+def area_samples(frame, species="beads", spacing=None):
+    """Area quadrature points ``(xy, weight)`` of the beads, the rods or both."""
+    if species not in SPECIES:
+        raise ValueError(f"species must be one of {SPECIES}, got '{species}'")
+    spacing = spacing or default_spacing(frame)
+    parts = []
+    if species in ("beads", "all"):
+        xy, r, _ = frame.beads()
+        parts.append(disc_samples(xy, r, spacing))
+    if species in ("rods", "all"):
+        parts.append(frame.rods().samples(spacing))
+    xy = np.concatenate([p[0] for p in parts])
+    return frame.box.wrap(xy), np.concatenate([p[1] for p in parts])
+
+
+def _edges(geometry, coord, bins):
+    if np.ndim(bins) == 0:
+        lo, hi = geometry.coordinate_range(coord)
+        return np.linspace(lo, hi, int(bins) + 1)
+    return np.asarray(bins, float)
+
+
+def _coordinate_in_range(geometry, xy, coord, edges):
+    q = geometry.coordinate(xy, coord)
+    if not geometry.is_periodic(coord):
+        # area of a particle pressed a little into a wall stays in the edge bin
+        q = np.clip(q, edges[0], edges[-1])
+    return q
+
+
+def area_fraction_profile(frame, geometry, coord="x", bins=50, species="beads", spacing=None):
+    """Covered area fraction in bins of ``coord`` ('x', 'y'; 'r', 'theta' for an annulus)."""
+    edges = _edges(geometry, coord, bins)
+    xy, w = area_samples(frame, species, spacing)
+    q = _coordinate_in_range(geometry, xy, coord, edges)
+    covered, _ = np.histogram(q, edges, weights=w)
+    return Profile(coord, species, edges, covered / geometry.bin_areas(coord, edges))
+
+
+def area_fraction_map(frame, geometry, bins=(50, 10), species="beads", spacing=None):
+    """2D map of the covered fraction: ``(x_edges, y_edges, phi[nx, ny])``.
+
+    For an annulus the map covers its bounding square; each pixel's fraction is relative
+    to the pixel's area inside the annulus (pixels wholly outside are NaN).
+    """
+    xe, ye = _edges(geometry, "x", bins[0]), _edges(geometry, "y", bins[1])
+    xy, w = area_samples(frame, species, spacing)
+    x = _coordinate_in_range(geometry, xy, "x", xe)
+    y = _coordinate_in_range(geometry, xy, "y", ye)
+    covered, _, _ = np.histogram2d(x, y, (xe, ye), weights=w)
+    area = np.outer(np.diff(xe), np.diff(ye))
+    if isinstance(geometry, Annulus):
+        area = area * _inside_fraction(geometry, xe, ye)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        phi = np.where(area > 1e-12 * area.max(), covered / area, np.nan)
+    return xe, ye, phi
+
+
+def _inside_fraction(geometry, xe, ye, sub=12):
+    """Fraction of each pixel inside the cell, from a sub-grid of sub x sub points."""
+    u = (np.arange(sub) + 0.5) / sub
+    xs = (xe[:-1, None] + np.diff(xe)[:, None] * u).ravel()
+    ys = (ye[:-1, None] + np.diff(ye)[:, None] * u).ravel()
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    inside = geometry.contains(np.stack([X, Y], -1)).astype(float)
+    return inside.reshape(len(xe) - 1, sub, len(ye) - 1, sub).mean(axis=(1, 3))
+
+
+def global_area_fractions(frame, geometry):
+    """(phi_b, phi_r): total projected areas over the cell area (exact shape areas)."""
+    _, r, _ = frame.beads()
+    rods = frame.rods()
+    return (float(np.pi * np.sum(r ** 2) / geometry.area),
+            float(rods.area.sum() / geometry.area) if len(rods) else 0.0)
+
+
+# --------------------------------------------------------------------------- order
+
+def polar_order(vectors):
+    """(mean vector, magnitude) of the unit vectors of ``vectors`` (zero vectors skipped)."""
+    v = np.asarray(vectors, float).reshape(-1, 2)
+    n = np.linalg.norm(v, axis=1)
+    v = v[n > 0] / n[n > 0, None]
+    if len(v) == 0:
+        return np.zeros(2), 0.0
+    m = v.mean(axis=0)
+    return m, float(np.linalg.norm(m))
+
+
+def tangential_polarization(rods, annulus):
+    """Mean of p . e_theta over the rods of an annulus (+1: all counter-clockwise)."""
+    if len(rods) == 0:
+        return 0.0
+    return float(np.mean(np.sum(rods.axis * annulus.tangent(rods.centre), axis=1)))
+
+
+def polarization(frame, geometry=None):
+    """Polar order of rod axes and of rod and bead velocities.
+
+    Returns a dict: ``P`` = |<p>|, ``Px``, ``Py``, ``n_rods``, ``P_tangential`` (annulus
+    only), ``rod_velocity_order`` and ``bead_velocity_order`` (|<v/|v|>|, when the dump
+    has velocities).
+    """
+    rods = frame.rods()
+    m, P = polar_order(rods.axis)
+    out = {"n_rods": len(rods), "P": P, "Px": float(m[0]), "Py": float(m[1])}
+    if isinstance(geometry, Annulus):
+        out["P_tangential"] = tangential_polarization(rods, geometry)
+    if rods.velocity is not None:
+        out["rod_velocity_order"] = polar_order(rods.velocity)[1]
+    _, _, vb = frame.beads()
+    if vb is not None:
+        out["bead_velocity_order"] = polar_order(vb)[1]
+    return out
+
+
+def smoothed_bead_field(frame, geometry, cell=None, smoothing=1.0):
+    """Bead area-fraction map on pixels of size ~``cell`` (default 2 bead diameters),
+    Gaussian-smoothed over ``smoothing`` pixels (periodic along periodic axes)."""
+    _, r, _ = frame.beads()
+    cell = cell or 4 * float(np.median(r))
+    bins = tuple(max(1, int(round(L / cell))) for L in geometry.extent)
+    xe, ye, phi = area_fraction_map(frame, geometry, bins, "beads")
+    valid = np.isfinite(phi)
+    modes = ["wrap" if geometry.is_periodic(c) else "nearest" for c in "xy"]
+    # normalised convolution keeps the pixels outside an annulus from diluting the field
+    num = ndimage.gaussian_filter(np.where(valid, phi, 0.0), smoothing, mode=modes)
+    den = ndimage.gaussian_filter(valid.astype(float), smoothing, mode=modes)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        field = np.where(valid, num / den, np.nan)
+    return xe, ye, field
+
+
+def _gradient(field, dx, dy, periodic):
+    grads = []
+    for k, (h, per) in enumerate(zip((dx, dy), periodic)):
+        if field.shape[k] < 3:
+            grads.append(np.zeros_like(field))
+        elif per:
+            grads.append((np.roll(field, -1, k) - np.roll(field, 1, k)) / (2 * h))
+        else:
+            grads.append(np.gradient(field, h, axis=k))
+    return grads
+
+
+def _pixel_of(edges, q):
+    return np.clip(np.searchsorted(edges, q) - 1, 0, len(edges) - 2)
+
+
+def rod_environment(frame, geometry, cell=None, smoothing=1.0):
+    """Where the rods sit in the bead medium.
+
+    Per rod, from the smoothed bead area fraction (:func:`smoothed_bead_field`) at its
+    centre: ``phi_b`` (local bead area fraction), ``gradient`` ((n, 2), per unit length)
+    and ``cos`` (cosine between the rod axis p and the gradient; NaN where the gradient
+    vanishes). Returned as a dict of arrays.
+    """
+    rods = frame.rods()
+    if len(rods) == 0:
+        return {"phi_b": np.zeros(0), "gradient": np.zeros((0, 2)), "cos": np.zeros(0)}
+    xe, ye, field = smoothed_bead_field(frame, geometry, cell, smoothing)
+    f = np.nan_to_num(field, nan=np.nanmean(field))
+    gx, gy = _gradient(f, xe[1] - xe[0], ye[1] - ye[0],
+                       [geometry.is_periodic("x"), geometry.is_periodic("y")])
+    i, j = _pixel_of(xe, rods.centre[:, 0]), _pixel_of(ye, rods.centre[:, 1])
+    g = np.stack([gx[i, j], gy[i, j]], 1)
+    norm = np.linalg.norm(g, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.where(norm > 1e-12, np.sum(g * rods.axis, 1) / norm, np.nan)
+    return {"phi_b": f[i, j], "gradient": g, "cos": cos}
+
+
+def gradient_alignment(frame, geometry, cell=None, smoothing=1.0):
+    """How rods point relative to the bead-density gradient.
+
+    Returns ``(cos, mean_cos)``: per rod, the cosine of the angle between its axis p and
+    the gradient of the smoothed bead area fraction at its centre (NaN where the gradient
+    vanishes), and their mean. Positive: rods point from low to high bead density (the
+    paper's A > 0).
+    """
+    cos = rod_environment(frame, geometry, cell, smoothing)["cos"]
+    return cos, float(np.nanmean(cos)) if np.isfinite(cos).any() else float("nan")
+
+
+# --------------------------------------------------------------------------- layers
+
+@dataclass
+class LayerSides:
+    """A rod layer and the bead area fraction on both of its sides."""
+    coord: str            # coordinate across the layer ('x', 'y' or 'theta')
+    position: float       # layer position along coord
+    direction: int        # +1 / -1: the side the layer's rods point to ("ahead")
+    fraction_in_layer: float  # share of all rods in this layer
+    alignment: float      # |<p>| of the layer's rods
+    phi_ahead: float
+    phi_behind: float
+
+    @property
+    def contrast(self):
+        return self.phi_ahead - self.phi_behind
+
+
+def _layer_coordinate(geometry, rods):
+    """Across which coordinate to look for layers: theta in an annulus, x in a channel,
+    in a box the axis the rods point along most (by |p|, so opposed layers count)."""
+    if isinstance(geometry, Annulus):
+        return "theta"
+    if geometry.kind == "channel":
+        return "x"
+    return "xy"[int(np.argmax(np.mean(np.abs(rods.axis), axis=0)))]
+
+
+def _along(geometry, rods, coord):
+    """Each rod's axis component along increasing ``coord``."""
+    if coord == "theta":
+        return np.sum(rods.axis * geometry.tangent(rods.centre), axis=1)
+    return rods.axis[:, "xy".index(coord)]
+
+
+def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None, gap=None,
+                window=None):
+    """Find up to ``max_layers`` rod layers and the bead area fraction on both sides of each.
+
+    Layers are searched across the coordinate the rods point along (x in a channel, theta
+    in an annulus, the dominant axis of |p| in a box) as peaks of the rod-density
+    histogram (bins of half a rod length), each refined by the mean position of the rods
+    within ``halfwidth`` (default one rod length L) and kept if it holds at least
+    ``min_fraction`` of the rods; the densest comes first, the next is searched among
+    the remaining rods. A layer's direction is the sign of its own rods' mean axis
+    component; ``phi_ahead`` / ``phi_behind`` are bead area fractions in windows of width
+    ``window`` (default 5 L) starting ``gap`` (default L) ahead of / behind it. Lengths along
+    theta are arc lengths at the annulus's mid radius.
+    """
+    rods = frame.rods()
+    if len(rods) == 0:
+        raise ValueError("layer_sides: the frame has no rods")
+    L = float(np.median(rods.length))
+    coord = _layer_coordinate(geometry, rods)
+    to_q = 1.0 / geometry.length_per_unit(coord)
+    halfwidth, gap, window = (halfwidth or L) * to_q, (gap or L) * to_q, (window or 5 * L) * to_q
+    lo, hi = geometry.coordinate_range(coord)
+    periodic = geometry.is_periodic(coord)
+    period = hi - lo
+
+    def rel(q, q0):
+        d = q - q0
+        return d - period * np.round(d / period) if periodic else d
+
+    q = geometry.coordinate(rods.centre, coord)
+    along = _along(geometry, rods, coord)
+    xy, w = area_samples(frame, "beads")
+    qb = geometry.coordinate(xy, coord)
+
+    def window_fraction(position, sign):
+        a, b = sorted((position + sign * gap, position + sign * (gap + window)))
+        if not periodic:
+            a, b = max(a, lo), min(b, hi)
+            if b <= a:
+                return float("nan")
+        d = rel(qb, position) * sign
+        covered = w[(d > gap) & (d <= gap + (b - a))].sum()
+        return float(covered / geometry.bin_areas(coord, np.array([a, b]))[0])
+
+    free = np.ones(len(rods), bool)
+    nb = max(3, int(round(period / (0.5 * L * to_q))))
+    layers = []
+    while len(layers) < max_layers and free.any():
+        counts, edges = np.histogram(q[free], nb, (lo, hi))
+        counts = ndimage.gaussian_filter1d(counts.astype(float), 1.0, mode="wrap" if periodic else "nearest")
+        peak = 0.5 * (edges[:-1] + edges[1:])[np.argmax(counts)]
+        near = free & (np.abs(rel(q, peak)) <= halfwidth)
+        position = peak + (np.mean(rel(q[near], peak)) if near.any() else 0.0)
+        if periodic:
+            position = lo + np.mod(position - lo, period)
+        members = free & (np.abs(rel(q, position)) <= halfwidth)
+        if layers and members.mean() < min_fraction:
+            break
+        direction = 1 if along[members].sum() >= 0 else -1
+        layers.append(LayerSides(coord, float(position), direction, float(members.mean()),
+                                 polar_order(rods.axis[members])[1] if members.any() else 0.0,
+                                 window_fraction(position, direction), window_fraction(position, -direction)))
+        free &= ~members
+    return layers
+
+
+def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
+    """The densest rod layer and the bead area fraction on both of its sides
+    (:func:`find_layers` with one layer)."""
+    return find_layers(frame, geometry, 1, halfwidth=halfwidth, gap=gap, window=window)[0]
+
+
+def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="beads", spacing=None):
+    """Area-fraction profile against the distance ahead of a rod layer.
+
+    ``layer``: a :class:`LayerSides` (default: the densest layer of the frame). The
+    distance is signed, positive on the side the layer's rods point to, in length units
+    (arc length at the mid radius in an annulus), over [-extent, extent] (default: half
+    the period, or the cell's extent). Averaging such profiles over frames follows a
+    moving layer, which a lab-frame profile would smear out.
+    """
+    layer = layer or layer_sides(frame, geometry)
+    coord = layer.coord
+    lo, hi = geometry.coordinate_range(coord)
+    arc = geometry.length_per_unit(coord)
+    periodic = geometry.is_periodic(coord)
+    extent = extent or 0.5 * (hi - lo) * arc
+    edges = np.linspace(-extent, extent, int(bins) + 1)
+    xy, w = area_samples(frame, species, spacing)
+    d = geometry.coordinate(xy, coord) - layer.position
+    if periodic:
+        d -= (hi - lo) * np.round(d / (hi - lo))
+    covered, _ = np.histogram(d * layer.direction * arc, edges, weights=w)
+    absolute = layer.position + layer.direction * edges / arc
+    if not periodic:
+        absolute = np.clip(absolute, lo, hi)
+    area = np.abs(geometry.bin_areas(coord, absolute))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fraction = np.where(area > 0, covered / area, np.nan)
+    return Profile("distance ahead of layer", species, edges, fraction)
+
+
+def fit_layer_exponential(profile, start, stop=None):
+    """Fit eq. 5's shape phi0 + (phi_plus - phi0) exp(-d / ell) to a :func:`layer_profile`
+    for distances ``start`` <= d <= ``stop`` (default: to the end) ahead of the layer.
+    Returns (phi_plus, ell, phi0), with phi_plus extrapolated to d = 0."""
+    d, phi = profile.centres, profile.fraction
+    ok = (d >= start) & (d <= (np.inf if stop is None else stop)) & np.isfinite(phi)
+    d, phi = d[ok], phi[ok]
+    if len(d) < 4:
+        raise ValueError("fit_layer_exponential: fewer than 4 bins ahead of the layer")
+    model = lambda x, a, ell, c: c + a * np.exp(-x / ell)
+    p0 = (max(phi[0] - phi[-1], 1e-3), 0.3 * (d[-1] - d[0]) + 1e-9, phi[-1])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OptimizeWarning)  # a flat profile has no covariance
+        (a, ell, c), _ = curve_fit(model, d, phi, p0=p0, maxfev=20000)
+    return float(c + a), float(ell), float(c)
+
+
+# --------------------------------------------------------------------------- phases
+
+@dataclass
+class PhaseThresholds:
+    """Thresholds of :func:`classify_phase` (see docs/python.rst for their reasons)."""
+    polar_order: float = 0.5      # |<p>| above which rods count as aligned (flock)
+    segregation: float = 0.3      # segregation index above which rods and beads demix
+    layer_fraction: float = 0.5   # share of rods in active layers for an active interface
+    layer_contrast: float = 0.1   # phi_b ahead minus behind a layer for it to be active
+    layer_alignment: float = 0.5  # |<p>| of a layer's rods for it to be active
+
+
+def segregation_index(frame, geometry, cell=None):
+    """1 - (bead fraction where the rods are) / (mean bead fraction).
+
+    Both fractions come from maps on pixels of ``cell`` (default two rod lengths); the
+    bead fraction "where the rods are" is the rod-area-weighted mean over pixels. About
+    0 for mixed rods and beads (slightly above 0: a rod excludes beads from its own
+    area), towards 1 when rods sit in bead-free regions.
+    """
+    rods = frame.rods()
+    cell = cell or 2 * float(np.median(rods.length))
+    bins = tuple(max(1, int(round(L / cell))) for L in geometry.extent)
+    _, _, pb = area_fraction_map(frame, geometry, bins, "beads")
+    _, _, pr = area_fraction_map(frame, geometry, bins, "rods")
+    ok = np.isfinite(pb) & np.isfinite(pr)
+    mean_b = np.mean(pb[ok])
+    if mean_b <= 0 or pr[ok].sum() <= 0:
+        return 0.0
+    at_rods = np.sum(pr[ok] * pb[ok]) / np.sum(pr[ok])
+    return float(1 - at_rods / mean_b)
+
+
+@dataclass
+class PhaseResult:
+    phase: str
+    observables: dict = field(default_factory=dict)
+
+
+def phase_observables(frame, geometry, thresholds=None):
+    """The measured observables :func:`classify_phase` decides on.
+
+    Layer observables: those of the densest layer (``layer_*``, ``phi_ahead``,
+    ``phi_behind``), and over up to two layers the number of *active* ones (aligned and
+    with a bead contrast, per ``thresholds``) and the share of rods they hold
+    (``active_layer_fraction``). Two active layers pointing at each other trap a condensate.
+    """
+    t = thresholds or PhaseThresholds()
+    rods = frame.rods()
+    phi_b, phi_r = global_area_fractions(frame, geometry)
+    obs = {"phi_b": phi_b, "phi_r": phi_r, "n_rods": len(rods)}
+    if len(rods) == 0:  # beads only: nothing to order, segregate or layer
+        obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
+                   phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
+                   layer_coord="", n_active_layers=0, active_layer_fraction=0.0)
+        return obs
+    obs["P"] = polar_order(rods.axis)[1]
+    if isinstance(geometry, Annulus):
+        obs["P_tangential"] = tangential_polarization(rods, geometry)
+    obs["segregation"] = segregation_index(frame, geometry)
+    layers = find_layers(frame, geometry)
+    first = layers[0]
+    obs.update(layer_fraction=first.fraction_in_layer, layer_P=first.alignment,
+               phi_ahead=first.phi_ahead, phi_behind=first.phi_behind,
+               layer_contrast=first.contrast, layer_position=first.position, layer_coord=first.coord)
+    active = [l for l in layers if l.alignment >= t.layer_alignment and l.contrast >= t.layer_contrast]
+    obs["n_active_layers"] = len(active)
+    obs["active_layer_fraction"] = float(sum(l.fraction_in_layer for l in active))
+    return obs
+
+
+def classify_phase(frame, geometry, thresholds=PhaseThresholds()):
+    """Isotropic / flock / segregated / condensed (by an active interface).
+
+    Decided in this order on measured observables (:func:`phase_observables`):
+
+    1. ``condensed``: active layers (aligned, |<p>| >= ``layer_alignment``, with the bead
+       fraction ahead exceeding the one behind by ``layer_contrast``; one layer, or two
+       trapping a condensate) hold at least ``layer_fraction`` of the rods;
+    2. ``segregated``: segregation index >= ``segregation``;
+    3. ``flock``: rod polar order |<p>| >= ``polar_order``;
+    4. ``isotropic`` otherwise.
+    """
+    obs = phase_observables(frame, geometry, thresholds)
+    t = thresholds
+    if obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
+        phase = "condensed"
+    elif obs["segregation"] >= t.segregation:
+        phase = "segregated"
+    elif obs["P"] >= t.polar_order:
+        phase = "flock"
+    else:
+        phase = "isotropic"
+    return PhaseResult(phase, obs)

@@ -1,0 +1,275 @@
+"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory} ...``.
+
+Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
+pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
+``--length-unit`` (e.g. 1e-3 to work in bead diameters from a dump in metres) and
+``--timestep`` (time per MD step).
+"""
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from . import analysis, io, motility, theory
+from .geometry import geometry_from_box
+
+
+def _add_dump_args(p):
+    p.add_argument("dump", help="LAMMPS text dump (id mol type radius x y z [vx vy vz])")
+    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
+    p.add_argument("--centre", type=float, nargs=2, help="annulus centre (default: box centre)")
+    p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius")
+    p.add_argument("--r-out", type=float, help="annulus outer radius")
+    p.add_argument("--length-unit", type=float, default=1.0, help="divide lengths by this")
+    p.add_argument("--timestep", type=float, default=1.0, help="time per MD step")
+    p.add_argument("--frame", type=int, default=None,
+                   help="only this frame (python index, -1 = last); default all")
+    p.add_argument("--every", type=int, default=None, help="every n-th frame")
+
+
+def _frames(args):
+    kw = dict(length_unit=args.length_unit, timestep=args.timestep)
+    if args.frame is not None:
+        return [io.read_frame(args.dump, args.frame, **kw)]
+    return list(io.read_dump(args.dump, every=args.every, **kw))
+
+
+def _geometry(args, frame):
+    u = args.length_unit
+    return geometry_from_box(frame.box, args.geometry,
+                             None if args.centre is None else tuple(np.asarray(args.centre) / u),
+                             args.r_in / u, None if args.r_out is None else args.r_out / u)
+
+
+def _print_table(rows, out):
+    """Whitespace-separated table; a column missing in a row (e.g. no rods) prints nan."""
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    out.write(" ".join(keys) + "\n")
+    for r in rows:
+        vals = (r.get(k, float("nan")) for k in keys)
+        out.write(" ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in vals) + "\n")
+
+
+def cmd_profile(args, out):
+    if args.fit is not None and not args.relative_to_layer:
+        raise ValueError("--fit needs --relative-to-layer")
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    if args.relative_to_layer:
+        profiles = [analysis.layer_profile(fr, geom, extent=args.extent, bins=args.bins, species=args.species)
+                    for fr in frames]
+        name = "distance_ahead_of_layer"
+    else:
+        profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species) for fr in frames]
+        name = args.coord
+    mean = np.mean([p.fraction for p in profiles], axis=0)
+    avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
+    _print_table([{name: float(c), "area_fraction": float(v)} for c, v in zip(avg.centres, mean)], out)
+    if args.fit is not None:
+        phi_plus, ell, phi0 = analysis.fit_layer_exponential(avg, args.fit[0], args.fit[1])
+        out.write(f"# eq. 5 fit: phi_plus {phi_plus:.6g} ell {ell:.6g} phi0 {phi0:.6g}\n")
+    if args.plot:
+        from . import plotting
+        plotting.plot_profiles([avg], args.plot, labels=[f"{args.species}, mean of {len(frames)} frame(s)"])
+
+
+def cmd_map(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    maps = [analysis.area_fraction_map(fr, geom, tuple(args.bins), args.species) for fr in frames]
+    xe, ye = maps[0][0], maps[0][1]
+    phi = np.mean([m[2] for m in maps], axis=0)
+    if args.output.endswith(".txt") or args.output.endswith(".csv"):
+        np.savetxt(args.output, phi.T, fmt="%.6g",
+                   header=f"{args.species} area fraction, rows y ({ye[0]:g}..{ye[-1]:g}), "
+                          f"columns x ({xe[0]:g}..{xe[-1]:g}), mean of {len(frames)} frame(s)")
+    else:
+        from . import plotting
+        plotting.plot_map(xe, ye, phi, args.output, label=f"{args.species} area fraction")
+    out.write(f"wrote {args.output}\n")
+
+
+def cmd_polar(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    rows = []
+    for fr in frames:
+        row = {"step": fr.step, "time": fr.time}
+        row.update(analysis.polarization(fr, geom))
+        env = analysis.rod_environment(fr, geom)
+        finite = np.isfinite(env["cos"])
+        row["gradient_alignment"] = float(env["cos"][finite].mean()) if finite.any() else float("nan")
+        row["phi_b_at_rods"] = float(env["phi_b"].mean()) if len(env["phi_b"]) else float("nan")
+        rows.append(row)
+    _print_table(rows, out)
+
+
+def cmd_phase(args, out):
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    rows = []
+    for fr in frames:
+        res = analysis.classify_phase(fr, geom)
+        row = {"step": fr.step, "phase": res.phase}
+        row.update({k: v for k, v in res.observables.items() if k != "layer_coord"})
+        rows.append(row)
+    _print_table(rows, out)
+
+
+def cmd_motility(args, out):
+    tracks = motility.rod_tracks(_frames(args))
+    summary = motility.motility_summary(tracks, args.max_lag, use_velocities=not args.from_positions)
+    out.write(json.dumps(summary, indent=1) + "\n")
+
+
+def cmd_snapshot(args, out):
+    from . import plotting
+    fr = io.read_frame(args.dump, args.frame if args.frame is not None else -1,
+                       length_unit=args.length_unit, timestep=args.timestep)
+    plotting.snapshot(fr, _geometry(args, fr), args.output)
+    out.write(f"wrote {args.output}\n")
+
+
+def cmd_kymograph(args, out):
+    from . import plotting
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, "beads") for fr in frames]
+    plotting.kymograph([fr.time for fr in frames], profiles, args.output)
+    out.write(f"wrote {args.output}\n")
+
+
+def cmd_movie(args, out):
+    from . import plotting
+    frames = _frames(args)
+    plotting.movie(frames, args.output, _geometry(args, frames[0]), fps=args.fps)
+    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+
+
+def cmd_convert(args, out):
+    frames = _frames(args)
+    io.write_extxyz(args.output, frames)
+    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+
+
+def cmd_theory(args, out):
+    if args.model == "growth":
+        names = [f for f in theory.LinearParameters.__dataclass_fields__]
+        p = theory.LinearParameters(**{n: getattr(args, n) for n in names})
+        k = np.linspace(0, args.k_max or 2 * np.sqrt(p.a / p.K), args.n_k)
+        lam = theory.growth_rates(k, p, expanded=not args.full)
+        out.write(f"condensation (A alpha rho0 + B u0 sigma0 > 0): {theory.condensation_condition(p)}\n")
+        out.write(f"non-reciprocity condition: {theory.nonreciprocity_condition(p)}\n")
+        ks, ls = theory.fastest_mode(p, args.k_max, expanded=not args.full)
+        out.write(f"fastest mode: k = {ks:.6g}, Re lambda = {ls:.6g}\n")
+        if args.table:
+            _print_table([{"k": float(ki), "re1": float(l[0].real), "im1": float(l[0].imag),
+                           "re2": float(l[1].real), "im2": float(l[1].imag)} for ki, l in zip(k, lam)], out)
+        if args.plot:
+            from . import plotting
+            plotting.plot_growth_rates(k, lam, args.plot)
+    else:
+        eos = theory.HendersonEOS(T=args.T, d=args.d)
+        pf = theory.point_force(args.f, args.rho0, args.gamma, args.v0, eos)
+        out.write(f"rho+ = {pf.rho_plus:.8g}  (area fraction {float(eos.eta(pf.rho_plus)):.6g})\n")
+        out.write(f"rho- = {pf.rho_minus:.8g}\nl+ = {pf.ell_plus:.8g}\n")
+        if args.plot:
+            from . import plotting
+            x = np.linspace(0, 5 * pf.ell_plus, 400)
+            plotting.plot_point_force(x, {"eq. 5 (exponential)": pf.profile(x),
+                                          "steady eq. 3 (Henderson)": theory.steady_profile(x, pf, eos)},
+                                      pf, args.plot)
+
+
+def build_parser():
+    ap = argparse.ArgumentParser(prog="python3 -m activegrain", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("profile", help="area-fraction profile (mean over the frames)")
+    _add_dump_args(p)
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
+    p.add_argument("--bins", type=int, default=50)
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("--relative-to-layer", action="store_true",
+                   help="profile against the distance ahead of each frame's densest rod layer")
+    p.add_argument("--extent", type=float, help="with --relative-to-layer: largest |distance|")
+    p.add_argument("--fit", type=float, nargs=2, metavar=("START", "STOP"),
+                   help="with --relative-to-layer: fit eq. 5's exponential between these distances")
+    p.add_argument("--plot", help="also save a plot (png/pdf)")
+    p.set_defaults(func=cmd_profile)
+
+    p = sub.add_parser("map", help="2D area-fraction map (png, or .txt/.csv table)")
+    _add_dump_args(p)
+    p.add_argument("--bins", type=int, nargs=2, default=[60, 12], metavar=("NX", "NY"))
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_map)
+
+    p = sub.add_parser("polar", help="rod polarization, velocity order, alignment with the bead gradient")
+    _add_dump_args(p)
+    p.set_defaults(func=cmd_polar)
+
+    p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed")
+    _add_dump_args(p)
+    p.set_defaults(func=cmd_phase)
+
+    p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
+    _add_dump_args(p)
+    p.add_argument("--from-positions", action="store_true",
+                   help="speeds from centre displacements between frames, not dumped velocities")
+    p.add_argument("--max-lag", type=int, help="largest lag (frames) for MSD and correlation")
+    p.set_defaults(func=cmd_motility)
+
+    p = sub.add_parser("snapshot", help="draw one frame")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_snapshot)
+
+    p = sub.add_parser("kymograph", help="bead profile against time")
+    _add_dump_args(p)
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
+    p.add_argument("--bins", type=int, default=100)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_kymograph)
+
+    p = sub.add_parser("movie", help="animate the frames (.gif; .mp4 needs ffmpeg)")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.add_argument("--fps", type=int, default=10)
+    p.set_defaults(func=cmd_movie)
+
+    p = sub.add_parser("convert", help="write the frames as extended XYZ (through ase)")
+    _add_dump_args(p)
+    p.add_argument("-o", "--output", required=True)
+    p.set_defaults(func=cmd_convert)
+
+    p = sub.add_parser("theory", help="linear stability (growth) or moving point force (pointforce)")
+    p.add_argument("model", choices=["growth", "pointforce"])
+    for name, fld in theory.LinearParameters.__dataclass_fields__.items():
+        p.add_argument(f"--{name}", type=float, default=fld.default,
+                       help="bead density (growth: rho0; pointforce: far from the force, number per area)"
+                       if name == "rho0" else "growth: model parameter")
+    p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default 2 sqrt(a/K))")
+    p.add_argument("--n-k", type=int, default=400)
+    p.add_argument("--full", action="store_true", help="growth: unexpanded 1/(a + K k^2) response")
+    p.add_argument("--table", action="store_true", help="growth: print k and both growth rates")
+    p.add_argument("--f", type=float, default=1.0, help="pointforce: force f")
+    p.add_argument("--gamma", type=float, default=1.0, help="pointforce: drag per bead")
+    p.add_argument("--v0", type=float, default=1.0, help="pointforce: speed of the force")
+    p.add_argument("--T", type=float, default=1.0, help="pointforce: temperature of the hard-disk EOS")
+    p.add_argument("--d", type=float, default=1.0, help="pointforce: disc diameter")
+    p.add_argument("--plot", help="save a plot")
+    p.set_defaults(func=cmd_theory)
+    return ap
+
+
+def main(argv=None, out=None):
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args, out or sys.stdout)
+    except (ValueError, RuntimeError, OSError) as e:
+        sys.stderr.write(f"activegrain {args.command}: {e}\n")
+        return 1
+    return 0

@@ -1,0 +1,112 @@
+"""Dump reading/writing: round trip, units, image flags, rods across the boundary."""
+import numpy as np
+import pytest
+
+from activegrain import read_dump, read_frame, write_dump, geometry_from_box, Box
+from activegrain import synthetic as S
+from activegrain.geometry import Channel, PeriodicBox, Rectangle, Annulus
+
+
+def test_round_trip_with_units_and_velocities(tmp_path):
+    rng = np.random.default_rng(1)
+    box = S.channel_box(40, 10)
+    beads = S.lattice_beads(0, 40, 0, 10, 2.0)
+    centres, axes = S.random_rods(3, (5, 35, 3, 7), rng)
+    frames = []
+    for step in (0, 500):
+        fr = S.make_frame(box, beads, 0.5, centres, axes, bead_vel=rng.normal(size=(len(beads), 2)),
+                          rod_vel=rng.normal(size=(3, 2)), step=step)
+        frames.append(fr.scaled(1e-3))  # metres, as the simulations write them
+    path = tmp_path / "d.dump"
+    write_dump(path, frames)
+    back = list(read_dump(str(path), length_unit=1e-3, timestep=2e-6))
+    assert [f.step for f in back] == [0, 500]
+    assert back[1].time == pytest.approx(500 * 2e-6)
+    assert back[0].box.periodic == (True, False, False)
+    assert np.allclose(back[0].box.hi, (40, 10, 1.12))
+    ref = frames[1].scaled(1e3)
+    assert np.array_equal(back[1].mol, ref.mol)
+    assert np.allclose(back[1].radius, ref.radius)
+    assert np.allclose(back[1].pos, ref.pos, atol=1e-4)  # MDAnalysis stores float32
+    assert np.allclose(back[1].vel, ref.vel, atol=1e-4)
+    rods = back[1].rods()
+    assert np.allclose(rods.axis, axes, atol=1e-5)
+    assert isinstance(geometry_from_box(back[0].box), Channel)
+
+
+def test_image_flags_and_rod_straddling_the_boundary(tmp_path):
+    box = Box((0.0, 0.0, 0.0), (20.0, 20.0, 1.12), (True, True, False))
+    s, r = S.rod_spheres()
+    # rod centred on x = 0 pointing +x: half of it sits across the periodic boundary
+    lines = ["ITEM: TIMESTEP", "7", "ITEM: NUMBER OF ATOMS", str(len(s) + 1),
+             "ITEM: BOX BOUNDS pp pp ff", "0 20", "0 20", "0 1.12",
+             "ITEM: ATOMS id mol type radius x y z ix iy iz"]
+    lines.append("1 0 1 0.5 25.0 3.0 0.5 0 0 0")  # unwrapped position + image 0: wrapped on read
+    for i, (x, ri) in enumerate(zip(s, r)):
+        img = -1 if x < 0 else 0
+        lines.append(f"{i + 2} 5 2 {ri} {x} 10.0 0.5 {img} 0 0")  # x unwrapped in image -1
+    path = tmp_path / "img.dump"
+    path.write_text("\n".join(lines) + "\n")
+    fr = read_frame(str(path))
+    assert fr.step == 7
+    assert 0 <= fr.pos[0, 0] < 20 and fr.pos[0, 0] == pytest.approx(5.0, abs=1e-5)
+    rods = fr.rods()
+    assert rods.ids.tolist() == [5]
+    assert np.allclose(rods.axis[0], (1, 0), atol=1e-6)
+    assert np.allclose(box.minimum_image(rods.centre[0] - (0.0, 10.0)), 0, atol=1e-5)
+    assert 0 <= rods.centre[0, 0] < 20
+    assert rods.length[0] == pytest.approx(S.ROD_LENGTH, rel=1e-6)
+
+
+def test_unwrapped_coordinate_columns_are_wrapped(tmp_path):
+    p = tmp_path / "xu.dump"
+    p.write_text("ITEM: TIMESTEP\n3\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp ff pp\n"
+                 "-5 5\n0 4\n0 1\nITEM: ATOMS id mol type radius xu yu zu\n"
+                 "2 0 1 0.5 13.0 2.0 0.5\n1 0 1 0.5 -6.0 1.0 0.5\n")
+    fr = read_frame(str(p))
+    assert np.allclose(fr.pos[:, :2], [(4.0, 1.0), (3.0, 2.0)], atol=1e-5)  # sorted by id, wrapped in x
+    assert fr.box.lo == (-5.0, 0.0, 0.0) and fr.vel is None
+
+
+def test_missing_columns_and_not_a_dump(tmp_path):
+    p = tmp_path / "bad.dump"
+    p.write_text("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
+                 "0 1\n0 1\n0 1\nITEM: ATOMS id type x y z\n1 1 0.5 0.5 0.5\n")
+    with pytest.raises(ValueError, match="mol"):
+        read_frame(str(p))
+    t = tmp_path / "time.dump"
+    t.write_text("ITEM: UNITS\nsi\nITEM: TIME\n0\nITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\n"
+                 "ITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\nITEM: ATOMS id mol type radius x y z\n"
+                 "1 0 1 0.5 0.5 0.5 0.5\n")
+    with pytest.raises(ValueError, match="dump_modify"):
+        read_frame(str(t))
+    q = tmp_path / "junk.txt"
+    q.write_text("hello\n" * 20)
+    with pytest.raises(ValueError, match="not a LAMMPS text dump"):
+        read_frame(str(q))
+
+
+def test_geometries_from_box_flags():
+    pp = Box((0, 0, 0), (10, 10, 1), (True, True, False))
+    pf = Box((0, 0, 0), (10, 10, 1), (True, False, False))
+    ff = Box((0, 0, 0), (10, 10, 1), (False, False, False))
+    assert isinstance(geometry_from_box(pp), PeriodicBox)
+    assert isinstance(geometry_from_box(pf), Channel)
+    assert isinstance(geometry_from_box(ff), Rectangle)
+    a = geometry_from_box(ff, "annulus", r_in=2, r_out=5)
+    assert isinstance(a, Annulus) and a.centre == (5.0, 5.0)
+    assert a.area == pytest.approx(np.pi * 21)
+    with pytest.raises(ValueError, match="r_out"):
+        geometry_from_box(ff, "annulus")
+    with pytest.raises(ValueError, match="periodic in y only"):
+        geometry_from_box(Box((0, 0, 0), (1, 1, 1), (False, True, False)))
+
+
+def test_to_ase_keeps_cell_and_molecules():
+    fr = S.make_frame(S.channel_box(30, 10), S.lattice_beads(0, 30, 0, 10, 2.0), 0.5,
+                      [(15, 5)], [(0, 1)])
+    atoms = fr.to_ase()
+    assert len(atoms) == len(fr.ids)
+    assert np.allclose(atoms.cell.lengths(), (30, 10, 1.12))
+    assert list(atoms.pbc) == [True, False, False]
+    assert np.array_equal(atoms.get_array("mol"), fr.mol)

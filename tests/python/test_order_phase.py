@@ -1,0 +1,236 @@
+"""Polarization, rods vs the bead gradient, layer sides and the phase classifier."""
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+from activegrain import analysis as A, synthetic as S
+from activegrain.geometry import Annulus, Box, geometry_from_box
+
+
+def _rods_frame(axes, rng, box=None):
+    box = box or S.square_box(200)
+    n = len(axes)
+    centres = rng.uniform(0, box.lengths[0], (n, 2))
+    return S.make_frame(box, [], 0.5, centres, axes)
+
+
+def test_aligned_rods_have_full_polarization_random_rods_none():
+    rng = np.random.default_rng(0)
+    fr = _rods_frame(np.tile([np.cos(0.7), np.sin(0.7)], (50, 1)), rng)
+    pol = A.polarization(fr)
+    assert pol["P"] == pytest.approx(1.0)
+    assert (pol["Px"], pol["Py"]) == pytest.approx((np.cos(0.7), np.sin(0.7)))
+    ang = rng.uniform(0, 2 * np.pi, 2000)
+    fr = _rods_frame(np.column_stack([np.cos(ang), np.sin(ang)]), rng)
+    assert A.polarization(fr)["P"] < 3 / np.sqrt(2000)
+    # nematic but not polar: half the rods reversed
+    axes = np.tile([1.0, 0.0], (100, 1))
+    axes[::2] *= -1
+    assert A.polarization(_rods_frame(axes, rng))["P"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_velocity_order_and_tangential_polarization():
+    box = Box((-10.0, -10.0, 0.0), (10.0, 10.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 3.0, 9.0)
+    ang = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    centres = 6 * np.column_stack([np.cos(ang), np.sin(ang)])
+    e_theta = np.column_stack([-np.sin(ang), np.cos(ang)])
+    fr = S.make_frame(box, [(0.0, 7.5)], 0.5, centres, e_theta, bead_vel=[(1.0, 0.0)], rod_vel=2 * e_theta)
+    pol = A.polarization(fr, ann)
+    assert pol["P_tangential"] == pytest.approx(1.0)
+    assert pol["P"] == pytest.approx(0.0, abs=1e-12)  # all around the ring: no net vector
+    assert pol["bead_velocity_order"] == pytest.approx(1.0)
+    assert pol["rod_velocity_order"] == pytest.approx(0.0, abs=1e-12)
+    fr2 = S.make_frame(box, [], 0.5, centres, -e_theta)
+    assert A.polarization(fr2, ann)["P_tangential"] == pytest.approx(-1.0)
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_rods_relative_to_bead_gradient(sign):
+    rng = np.random.default_rng(2)
+    box = S.channel_box(120, 30)
+    # bead density rising along x: strips of decreasing lattice spacing
+    beads = np.concatenate([S.lattice_beads(x0, x0 + 24, 0, 30, a)
+                            for x0, a in zip(range(0, 120, 24), (3.0, 2.4, 2.0, 1.5, 1.2))])
+    centres, _ = S.random_rods(10, (30, 90, 4, 26), rng)
+    axes = np.tile([sign, 0.0], (10, 1))
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    cos, mean = A.gradient_alignment(fr, geometry_from_box(box), smoothing=3.0)
+    assert sign * mean > 0.8
+    env = A.rod_environment(fr, geometry_from_box(box), smoothing=3.0)
+    # local bead fraction rises with x like the strips (0.09 at x ~ 12 ... 0.55 at x ~ 108)
+    order = np.argsort(centres[:, 0])
+    assert np.corrcoef(centres[order, 0], env["phi_b"][order])[0, 1] > 0.8
+    assert np.all(env["gradient"][:, 0] > 0)
+
+
+def test_layer_sides_measure_both_densities():
+    fr = S.phase_configuration("condensed")
+    layer = A.layer_sides(fr, geometry_from_box(fr.box))
+    assert layer.coord == "x" and layer.direction == 1
+    assert layer.position == pytest.approx(30.0, abs=0.1)
+    assert layer.fraction_in_layer == 1.0
+    assert layer.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)   # lattice spacing 1
+    assert layer.phi_behind == pytest.approx(np.pi / 16, rel=0.1)  # lattice spacing 2
+    # mirrored: rods point -x, the dense side is at -x
+    fr.pos[:, 0] = fr.box.wrap(np.column_stack([124.0 - fr.pos[:, 0], fr.pos[:, 1]]))[:, 0]
+    mirrored = A.layer_sides(fr, geometry_from_box(fr.box))
+    assert mirrored.direction == -1
+    assert mirrored.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed"])
+def test_classifier_recognises_constructed_phases(phase, seed):
+    fr = S.phase_configuration(phase, seed=seed)
+    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == phase
+
+
+@pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed", "trapped"])
+def test_classifier_on_disordered_packings(phase):
+    fr = S.phase_configuration(phase, seed=7, packing="relaxed")
+    xy, r, _ = fr.beads()
+    tree = cKDTree(xy - fr.box.lo[:2], boxsize=[fr.box.lengths[0], 1e3])  # periodic along x
+    assert len(tree.query_pairs(0.99)) == 0  # a real packing: no overlapping beads
+    expect = "condensed" if phase == "trapped" else phase
+    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == expect
+
+
+def test_two_opposed_layers_trap_a_condensate():
+    fr = S.phase_configuration("trapped")
+    g = geometry_from_box(fr.box)
+    layers = A.find_layers(fr, g)
+    assert len(layers) == 2
+    assert sorted((l.position, l.direction) for l in layers) == [(30.0, 1), (70.0, -1)]
+    for l in layers:
+        assert l.fraction_in_layer == pytest.approx(0.5)
+        assert l.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)
+        assert l.phi_behind == pytest.approx(np.pi / 16, rel=0.1)
+    res = A.classify_phase(fr, g)
+    assert res.phase == "condensed"
+    assert res.observables["n_active_layers"] == 2
+    assert res.observables["P"] == pytest.approx(0.0, abs=1e-12)  # no net polarization
+    # with one layer's rods turned around, that layer pushes into the dilute side: not active
+    rods = fr.rods()
+    flipped = S.make_frame(fr.box, fr.beads()[0], 0.5, rods.centre, np.tile([1.0, 0.0], (len(rods), 1)))
+    assert A.phase_observables(flipped, g)["n_active_layers"] == 1
+
+
+def test_classifier_thresholds_are_what_decides():
+    fr = S.phase_configuration("flock")
+    g = geometry_from_box(fr.box)
+    P = A.classify_phase(fr, g).observables["P"]
+    strict = A.PhaseThresholds(polar_order=min(1.0, P + 0.01))
+    assert A.classify_phase(fr, g, strict).phase == "isotropic"
+
+
+def test_condensed_layer_in_an_annulus():
+    box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)
+    # a radial row of rods at theta = 0 pointing counter-clockwise; beads dense for 0 < theta < 2
+    radii = np.arange(16.0, 27.5, 1.15)
+    centres = np.column_stack([radii, np.zeros_like(radii)])
+    axes = np.tile([0.0, 1.0], (len(radii), 1))
+    pts = S.lattice_beads(-30, 30, -30, 30, 1.0)
+    r, th = ann.polar(pts)
+    inside = (r > 15.5) & (r < 27.5)
+    keep = inside & (((th > 0.15) & (th < 2.0)) | ((th > 2.0) & (np.arange(len(pts)) % 4 == 0)))
+    beads = S.remove_overlaps(pts[keep], box, centres, axes)
+    fr = S.make_frame(box, beads, 0.5, centres, axes)
+    res = A.classify_phase(fr, ann)
+    assert res.observables["layer_coord"] == "theta"
+    prof = A.layer_profile(fr, ann, bins=36)  # arc lengths at the mid radius, full turn
+    arc = 0.5 * (ann.r_in + ann.r_out)
+    areas = 0.5 * np.diff(prof.edges) / arc * (ann.r_out ** 2 - ann.r_in ** 2)
+    assert np.sum(prof.fraction * areas) == pytest.approx(len(beads) * np.pi * 0.25, rel=1e-9)
+    assert np.mean(prof.fraction[(prof.centres > 3) & (prof.centres < 20)]) > 0.6
+    assert res.observables["phi_ahead"] > res.observables["phi_behind"] + 0.3
+    assert res.phase == "condensed"
+
+
+def test_beads_only_frame_is_isotropic_and_has_no_layer():
+    box = S.channel_box(40, 10)
+    fr = S.make_frame(box, S.lattice_beads(0, 40, 0, 10, 1.2), 0.5)
+    g = geometry_from_box(box)
+    assert A.classify_phase(fr, g).phase == "isotropic"
+    assert A.polarization(fr)["n_rods"] == 0
+    assert np.isnan(A.gradient_alignment(fr, g)[1])
+    with pytest.raises(ValueError, match="no rods"):
+        A.layer_sides(fr, g)
+
+
+def _strip_beads(d_edges, phi_target, x_layer, width, length):
+    """Beads in strips [d_k, d_k+1) at distance d ahead of x_layer: 4 columns per 4-wide
+    strip, rows chosen to approach phi_target(d); returns beads and the exact fractions."""
+    beads, exact = [], []
+    for a, b in zip(d_edges[:-1], d_edges[1:]):
+        w = b - a
+        n_rows = int(min(np.floor(width), round(phi_target(0.5 * (a + b)) * w * width / (np.pi / 4) / w)))
+        xs = x_layer + a + (np.arange(int(w)) + 0.5)
+        ys = (np.arange(n_rows) + 0.5) * width / n_rows
+        X, Y = np.meshgrid(xs, ys)
+        beads.append(np.column_stack([np.mod(X.ravel(), length), Y.ravel()]))
+        exact.append(int(w) * n_rows * np.pi / 4 / (w * width))
+    return np.concatenate(beads), np.array(exact)
+
+
+def test_profile_ahead_of_a_layer_and_exponential_fit():
+    length, width, x_layer, ell = 120.0, 31.0, 30.0, 10.0
+    target = lambda d: 0.35 + 0.4 * np.exp(-(d - 4) / ell) if d > 0 else 0.35
+    ahead = np.arange(4.0, 60.0, 4.0)
+    behind = -ahead[::-1]
+    b1, e1 = _strip_beads(ahead, target, x_layer, width, length)
+    b2, e2 = _strip_beads(behind, target, x_layer, width, length)
+    ys = np.arange(1.0, width - 0.5, 1.15)
+    centres = np.column_stack([np.full(len(ys), x_layer), ys])
+    box = S.channel_box(length, width)
+    fr = S.make_frame(box, np.concatenate([b1, b2]), 0.5, centres, np.tile([1.0, 0.0], (len(ys), 1)))
+    g = geometry_from_box(box)
+    prof = A.layer_profile(fr, g, extent=60.0, bins=30)
+    d = prof.centres
+    assert np.allclose(prof.fraction[(d > 4) & (d < 56)], e1, rtol=1e-9)
+    assert np.allclose(prof.fraction[(d < -4) & (d > -56)], e2, rtol=1e-9)
+    phi_plus, ell_fit, phi0 = A.fit_layer_exponential(prof, 4.0, 56.0)
+    assert ell_fit == pytest.approx(ell, rel=0.1)
+    assert phi0 == pytest.approx(0.35, abs=0.02)
+    assert phi_plus == pytest.approx(0.35 + 0.4 * np.exp(4 / ell), abs=0.05)
+    # mirrored (layer pointing -x): the same profile ahead
+    mirrored = S.make_frame(box, np.column_stack([np.mod(2 * x_layer - fr.beads()[0][:, 0], length),
+                                                  fr.beads()[0][:, 1]]), 0.5, centres,
+                            np.tile([-1.0, 0.0], (len(ys), 1)))
+    assert np.allclose(A.layer_profile(mirrored, g, extent=60.0, bins=30).fraction, prof.fraction, rtol=1e-9)
+
+
+def test_layer_along_y_in_a_periodic_box():
+    box = S.square_box(60)
+    xs = np.arange(1.0, 59.5, 1.15)
+    centres = np.column_stack([xs, np.full(len(xs), 20.0)])
+    axes = np.tile([0.0, -1.0], (len(xs), 1))  # pointing -y: the dense side is below
+    beads = np.concatenate([S.lattice_beads(0, 60, 0, 17, 1.0), S.lattice_beads(0, 60, 23, 60, 2.0)])
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    layer = A.layer_sides(fr, geometry_from_box(box))
+    assert (layer.coord, layer.direction) == ("y", -1)
+    assert layer.position == pytest.approx(20.0)
+    # behind: 11 whole dilute rows in y 24.5..47
+    assert layer.phi_behind == pytest.approx(11 * 30 * np.pi / 4 / (22.5 * 60))
+    # ahead: y 15.5 down to -7, wrapping into 53..60: 15.5 dense rows of 60, 3 dilute rows of 30
+    assert layer.phi_ahead == pytest.approx((15.5 * 60 + 3 * 30) * np.pi / 4 / (22.5 * 60), rel=2e-3)
+
+
+def test_layer_windows_are_clipped_at_walls_of_a_rectangle():
+    box = Box((0.0, 0.0, 0.0), (40.0, 20.0, 1.12), (False, False, False))
+    ys = np.arange(1.0, 19.5, 1.15)
+    centres = np.column_stack([np.full(len(ys), 30.0), ys])
+    axes = np.tile([1.0, 0.0], (len(ys), 1))
+    beads = np.concatenate([S.lattice_beads(33, 40, 0, 20, 1.0), S.lattice_beads(0, 27, 0, 20, 2.0)])
+    fr = S.make_frame(box, S.remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+    g = geometry_from_box(box)
+    layer = A.layer_sides(fr, g)
+    assert layer.coord == "x" and layer.direction == 1
+    # the window ahead (34.5..57) ends at the wall x = 40: the fraction is over 34.5..40 only
+    assert layer.phi_ahead == pytest.approx(np.pi / 4, rel=0.05)
+    assert layer.phi_behind == pytest.approx(np.pi / 16, rel=0.05)
+    # beads pressed slightly into a wall keep their whole area in the edge bin
+    fr2 = S.make_frame(box, [(0.3, 10.0), (39.8, 10.0)], 0.5)
+    p = A.area_fraction_profile(fr2, g, "x", 4)
+    assert np.sum(p.fraction * g.bin_areas("x", p.edges)) == pytest.approx(2 * np.pi * 0.25)
