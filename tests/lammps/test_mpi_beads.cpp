@@ -1,0 +1,78 @@
+// The dense bead monolayer gives the same mean kinetic energy on 1, 2 and 4 ranks (this file
+// also runs under mpirun -np 2 and -np 4): rank 0 runs the serial reference on its own.
+#include "beads_deck.h"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+namespace {
+
+constexpr int kWarmup = 5000;     // steps (10 vibration periods)
+constexpr int kChunks = 20;
+constexpr int kChunk = 1000;      // steps per block average (2 periods)
+
+struct MeanAndError {
+  double mean = 0, error = 0;
+};
+
+// Block averages of the kinetic energy of the deck run by the LAMMPS instance `lmp`.
+MeanAndError mean_kinetic_energy(void *lmp)
+{
+  lammps_commands_string(lmp, "variable steps index 0\n"
+                              "include " ACTIVEGRAIN_SOURCE_DIR "/examples/beads-vibrated/in.beads-vibrated\n"
+                              "thermo 0\n");
+  lammps_command(lmp, fmt::format("run {} post no", kWarmup).c_str());
+  lammps_command(lmp, fmt::format("fix keavg all ave/time 10 {} {} c_ke", kChunk / 10, kChunk).c_str());
+  std::vector<double> blocks;
+  for (int k = 0; k < kChunks; ++k) {
+    lammps_command(lmp, fmt::format("run {} post no", kChunk).c_str());
+    lammps_command(lmp, "variable agtest_ke equal f_keavg");
+    auto *p = (double *) lammps_extract_variable(lmp, "agtest_ke", nullptr);
+    blocks.push_back(*p);
+    lammps_free(p);
+  }
+  MeanAndError r;
+  for (double b : blocks) r.mean += b / kChunks;
+  double var = 0;
+  for (double b : blocks) var += (b - r.mean) * (b - r.mean) / (kChunks - 1);
+  r.error = std::sqrt(var / kChunks);
+  return r;
+}
+
+}    // namespace
+
+TEST_F(BeadMonolayer, SameMeanKineticEnergyOnAnyNumberOfRanks)
+{
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  double reference[2] = {0, 0};
+  // Plugins are registered once per process, so the serial reference runs while the
+  // fixture's instance is closed.
+  TearDown();
+  if (me == 0) {
+    std::vector<const char *> args = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
+    auto serial = std::make_unique<LAMMPS_NS::LAMMPS>((int) args.size(), const_cast<char **>(args.data()),
+                                                      MPI_COMM_SELF);
+    lammps_command(serial.get(), "plugin load " ACTIVEGRAIN_PLUGIN_FILE);
+    const MeanAndError r = mean_kinetic_energy(serial.get());
+    EXPECT_FALSE(lammps_has_error(serial.get()));
+    reference[0] = r.mean;
+    reference[1] = r.error;
+  }
+  SetUp();
+  MPI_Bcast(reference, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+
+  const MeanAndError parallel = mean_kinetic_energy(lmp);
+  ASSERT_FALSE(lammps_has_error(lmp));
+  ASSERT_GT(reference[0], 0.0);
+  // Within four combined standard errors, or 0.5 per cent where the blocks hardly fluctuate.
+  const double allowed = 4.0 * std::hypot(reference[1], parallel.error) + 5e-3 * reference[0];
+  if (me == 0)
+    std::cout << "mean kinetic energy: serial " << reference[0] << " +- " << reference[1] << ", "
+              << "parallel " << parallel.mean << " +- " << parallel.error << "\n";
+  EXPECT_NEAR(parallel.mean, reference[0], allowed)
+      << "serial " << reference[0] << " +- " << reference[1] << ", parallel " << parallel.mean
+      << " +- " << parallel.error;
+}
