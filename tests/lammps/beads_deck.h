@@ -8,6 +8,7 @@
 #include "pair.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 class BeadMonolayer : public LammpsTest {
@@ -35,6 +36,7 @@ class BeadMonolayer : public LammpsTest {
   {
     command("variable agtest_value equal " + expr);
     auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+    if (!p) throw std::runtime_error("cannot evaluate " + expr);
     const double result = *p;
     lammps_free(p);
     return result;

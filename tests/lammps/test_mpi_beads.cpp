@@ -76,3 +76,53 @@ TEST_F(BeadMonolayer, SameMeanKineticEnergyOnAnyNumberOfRanks)
       << "serial " << reference[0] << " +- " << reference[1] << ", parallel " << parallel.mean
       << " +- " << parallel.error;
 }
+
+TEST_F(BeadMonolayer, RestartContinuesTheRun)
+{
+  // A run interrupted by write_restart/read_restart continues like the uninterrupted one: the
+  // half of the last contact impulse still due is stored with the atoms.
+  command("atom_modify map array");
+  load_deck();
+  command("run 2000 post no\nwrite_restart beads-restart-test.bin\nrun 600 post no");
+  const double ke_continuous = value("c_ke");
+  const double z_continuous = value("z[7]+z[100]+z[250]");
+  TearDown();
+  SetUp();
+  command("read_restart beads-restart-test.bin\n"
+          "comm_modify vel yes\n"
+          "neighbor 1.0e-4 bin\n"
+          "neigh_modify delay 0 every 1 check yes\n"
+          "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 vibrate 4.0e-5 200.0 0.0 e 0.3 mu 0.01\n"
+          "fix gravity all gravity 9.81 vector 0 0 -1\n"
+          "fix integrate all nve/sphere\n"
+          "timestep 1.0e-5\n"
+          "compute ke all ke\n"
+          "thermo_style custom step c_ke\n"
+          "run 600 post no");
+  EXPECT_NEAR(value("c_ke"), ke_continuous, 1e-9 * ke_continuous);
+  EXPECT_NEAR(value("z[7]+z[100]+z[250]"), z_continuous, 1e-12);
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  if (me == 0) remove("beads-restart-test.bin");
+}
+
+TEST_F(BeadMonolayer, NewtonOffAndOnGiveTheSameCollisionAcrossRanksAndPeriodicBoundaries)
+{
+  // Two beads collide across the periodic x boundary (and, on several ranks, across
+  // sub-domains): exact restitution and momentum with newton on and off.
+  for (const char *newton : {"on", "off"}) {
+    TearDown();
+    SetUp();
+    command(fmt::format("newton {}", newton));
+    command("units si\natom_style sphere\natom_modify map array\nboundary p p f\n"
+            "region box block 0 0.01 0 0.01 0 0.002\ncreate_box 1 box\ncomm_modify vel yes\n"
+            "neighbor 0.0002 bin\ntimestep 1e-5\n"
+            "create_atoms 1 single 0.0092 0.005 0.001\ncreate_atoms 1 single 0.0012 0.005 0.001\n"
+            "set atom * diameter 0.001\nset atom * density 2700\n"
+            "velocity all set 0 0 0\nset atom 1 vx 0.1\nset atom 2 vx -0.05\n"
+            "pair_style gran/impulse\npair_coeff * * 0.3 0.05\nfix nve all nve/sphere\n"
+            "run 3000");
+    EXPECT_NEAR(value("vx[2]-vx[1]"), 0.3 * 0.15, 1e-12) << "newton " << newton;
+    EXPECT_NEAR(value("vx[1]+vx[2]"), 0.05, 1e-12) << "newton " << newton;
+  }
+}
