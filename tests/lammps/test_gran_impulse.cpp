@@ -234,3 +234,12 @@ TEST_F(GranImpulse, AtomStyleWithoutRadiusIsAnError)
           "pair_style gran/impulse\npair_coeff * * 0.3 0.05");
   EXPECT_NE(error_of("run 1").find("Pair gran/impulse requires atom attributes radius"), std::string::npos);
 }
+
+TEST_F(GranImpulse, UnsetPairCoefficientsMixGeometrically)
+{
+  bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0, 1);
+  bead(0.006, 0.005, 0.001, -0.05, 0.0, 0.0, 2);
+  command("pair_style gran/impulse\npair_coeff 1 1 0.2 0.05\npair_coeff 2 2 0.8 0.05\n"
+          "fix nve all nve/sphere\nrun 3000");
+  EXPECT_NEAR(v(2, 'x') - v(1, 'x'), std::sqrt(0.2 * 0.8) * 0.15, 1e-12);
+}
