@@ -35,6 +35,17 @@ static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
 static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
 
+// Domain::minimum_image() takes FLERR since LAMMPS 2025 feature releases; use whichever exists.
+template <class D>
+static auto minimum_image(const D *domain, Vec3 &d, int) -> decltype(domain->minimum_image(FLERR, d.x, d.y, d.z))
+{
+  return domain->minimum_image(FLERR, d.x, d.y, d.z);
+}
+template <class D> static void minimum_image(const D *domain, Vec3 &d, long)
+{
+  domain->minimum_image(d.x, d.y, d.z);
+}
+
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), pending(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr),
@@ -213,7 +224,7 @@ Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
 {
   const Vec3 xi(atom->x[i]);
   Vec3 com_to_atom = xi - solver.body(body).com;
-  domain->minimum_image(com_to_atom.x, com_to_atom.y, com_to_atom.z);
+  minimum_image(domain, com_to_atom, 0);
   return point - xi + com_to_atom;
 }
 
