@@ -339,13 +339,13 @@ void PairGranImpulse::compute(int eflag, int vflag)
           tcontact[i][k] = saved[i][3 + k];
         }
     apply_contact_forces(false);
+    stats[2] = 0.0;
     return;
   }
 
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
-  stats[2] = 0.0;
   gather_pair_contacts();
   gather_wall_contacts();
   const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
@@ -432,7 +432,8 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
 }
 
-// "contact_stats": this rank's last solve: contacts, sweeps, largest overlap, last change.
+// "contact_stats": this rank's last solve (contacts, sweeps, relative impulse change of the
+// last sweep) and the largest overlap of a contact since the run's setup.
 void *PairGranImpulse::extract(const char *name, int &dim)
 {
   dim = 1;

@@ -90,7 +90,7 @@ class PairGranImpulse : public Pair {
   class FixStoreAtom *pending;
 
   // Diagnostics of the last solve (extract()): contacts, sweeps, largest overlap.
-  double stats[4];    // contacts, sweeps, largest overlap, last relative impulse change
+  double stats[4];    // contacts, sweeps, largest overlap this run, last relative impulse change
 };
 
 }    // namespace LAMMPS_NS
