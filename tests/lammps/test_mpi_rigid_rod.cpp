@@ -1,6 +1,6 @@
 // fix rigid/rod on 1, 2 and 4 ranks with a rod straddling periodic and sub-domain boundaries:
 // the body state it gives contact styles (owned and ghost atoms) is the rod's, with the solid's
-// mass and inertia; a free rod keeps its linear and angular momentum; the polar axis points from
+// mass and inertia; a free rod (no walls, no gravity, its own spheres never collide) keeps its linear and angular momentum; the polar axis points from
 // the tail atom to the nose atom and survives a restart.
 #include "lammps_fixture.h"
 #include "rod_deck.h"
@@ -47,7 +47,8 @@ class RigidRodTest : public LammpsTest {
     command(box() + rod_template(file, tail, nose) +
             "create_atoms 0 single 5.9e-3 1e-4 -1e-4 mol rod 4321 units box\n"
             "fix r all rigid/rod molecule mol rod\n"
-            "comm_modify cutoff 5e-3\n"
+            "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+            "comm_modify vel yes cutoff 5e-3\n"
             "compute t all temp/sphere\nthermo_modify temp t\n"
             "compute c all com\n"
             "compute u all property/atom xu yu zu\n"
@@ -251,7 +252,8 @@ TEST_F(RigidRodTest, RestartKeepsBodyState)
           "read_restart test_mpi_rigid_rod.restart\n"
           "fix molecule_ids all property/atom mol ghost yes\n" + rod_template(file) +
           "fix r all rigid/rod molecule mol rod\n"
-          "comm_modify cutoff 5e-3\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+          "comm_modify vel yes cutoff 5e-3\n"
           "compute t all temp/sphere\nthermo_modify temp t\ncompute c all com\n"
           "run 0 post no");
   command("compute rl all rigid/local r vx vy vz angmomx angmomy angmomz\nrun 0 post no");
