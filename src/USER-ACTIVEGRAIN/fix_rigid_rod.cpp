@@ -10,7 +10,9 @@
 #include "molecule.h"
 #include "neighbor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
