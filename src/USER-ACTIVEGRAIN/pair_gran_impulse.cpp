@@ -35,6 +35,17 @@ static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
 static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
 
+// Domain::minimum_image() takes FLERR since LAMMPS 2025 feature releases; use whichever exists.
+template <class D>
+static auto minimum_image(const D *domain, Vec3 &d, int) -> decltype(domain->minimum_image(FLERR, d.x, d.y, d.z))
+{
+  return domain->minimum_image(FLERR, d.x, d.y, d.z);
+}
+template <class D> static void minimum_image(const D *domain, Vec3 &d, long)
+{
+  domain->minimum_image(d.x, d.y, d.z);
+}
+
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), pending(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr),
@@ -213,7 +224,7 @@ Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
 {
   const Vec3 xi(atom->x[i]);
   Vec3 com_to_atom = xi - solver.body(body).com;
-  domain->minimum_image(com_to_atom.x, com_to_atom.y, com_to_atom.z);
+  minimum_image(domain, com_to_atom, 0);
   return point - xi + com_to_atom;
 }
 
@@ -233,6 +244,18 @@ void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, Im
   stats[2] = std::max(stats[2], -gap);
 }
 
+// An upper bound of the speed at which atom i closes in on atom j (j < 0: a wall moving at
+// wall_velocity), surface speeds of spins included, from the atoms' own velocities. Pairs and
+// walls farther apart than it carries them in one step are skipped before bodies are built.
+double PairGranImpulse::closing_speed_bound(int i, int j, const Vec3 &wall_velocity) const
+{
+  double **v = atom->v, **omega = atom->omega;
+  double *radius = atom->radius;
+  const Vec3 partner = j >= 0 ? Vec3(v[j]) : wall_velocity;
+  const double spins = norm(Vec3(omega[i])) * radius[i] + (j >= 0 ? norm(Vec3(omega[j])) * radius[j] : 0.0);
+  return norm(Vec3(v[i]) - partner) + spins;
+}
+
 void PairGranImpulse::gather_pair_contacts()
 {
   double **x = atom->x;
@@ -242,6 +265,7 @@ void PairGranImpulse::gather_pair_contacts()
   const int nlocal = atom->nlocal;
   const double reach = neighbor->skin;
   const bool newton = force->newton_pair;
+  const double dt = update->dt;
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -255,8 +279,9 @@ void PairGranImpulse::gather_pair_contacts()
       const double rsq = norm2(d);
       if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
       const double r = std::sqrt(rsq);
-      const Vec3 n = d / r;    // from i to j
       const double gap = r - radsum;
+      if (gap > 0.0 && gap >= closing_speed_bound(i, j, Vec3()) * dt) continue;
+      const Vec3 n = d / r;    // from i to j
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
@@ -274,6 +299,7 @@ void PairGranImpulse::gather_wall_contacts()
     wall_scratch.clear();
     wall->find_wall_contacts(reach, wall_scratch);
     for (const ImpulseWall::Contact &c : wall_scratch) {
+      if (c.gap > 0.0 && c.gap >= closing_speed_bound(c.atom, -1, c.wall_velocity) * update->dt) continue;
       const int b = body_of_atom(c.atom);
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
       add_contact(w, b, -1, c.atom, wall, c.surface, c.point, c.normal, c.gap, c.material, Vec3(),
