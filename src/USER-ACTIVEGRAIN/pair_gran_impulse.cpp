@@ -28,6 +28,7 @@
 
 using namespace LAMMPS_NS;
 using ActiveGrain::ContactMaterial;
+using ActiveGrain::Mat3;
 using ActiveGrain::RigidBodyState;
 using ActiveGrain::Vec3;
 
@@ -211,6 +212,7 @@ int PairGranImpulse::body_of_atom(int i)
     key = 2 * atom->tag[i];
     state = RigidBodyState::sphere(atom->rmass[i], atom->radius[i], Vec3(atom->x[i]),
                                    Vec3(atom->v[i]), Vec3(atom->omega[i]));
+    if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
   }
   auto found = body_index.find(key);
   const int body = found != body_index.end() ? found->second : solver.add_body(state);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -77,17 +78,48 @@ TEST_F(BeadMonolayer, SameMeanKineticEnergyOnAnyNumberOfRanks)
       << " +- " << parallel.error;
 }
 
-TEST_F(BeadMonolayer, RestartContinuesTheRun)
+TEST_F(BeadMonolayer, RunBoundariesAndRestartsContinueTheRun)
 {
-  // A run interrupted by write_restart/read_restart continues like the uninterrupted one: the
-  // half of the last contact impulse still due is stored with the atoms.
+  // A run split in two, or interrupted by write_restart/read_restart, continues like the
+  // uninterrupted one: the half of the last contact impulse still due is stored with the atoms.
+  // The split is put on a step with contacts.
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
   command("atom_modify map array");
   load_deck();
-  command("run 2000 post no\nwrite_restart beads-restart-test.bin\nrun 600 post no");
-  const double ke_continuous = value("c_ke");
-  const double z_continuous = value("z[7]+z[100]+z[250]");
-  TearDown();
-  SetUp();
+  command("run 2000 post no");
+  int split = 2000;
+  for (double contacts = 0; contacts == 0; ++split) {
+    command("run 1 post no");
+    int dim = 0;
+    const double mine = ((double *) lmp->force->pair->extract("contact_stats", dim))[0];
+    MPI_Allreduce(&mine, &contacts, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    ASSERT_LT(split, 3000);
+  }
+  // The kinetic energy and the heights of a few beads after the continuation.
+  auto probe = [&]() { return std::make_pair(value("c_ke"), value("z[7]+z[100]+z[250]")); };
+  auto expect_same = [&](const std::pair<double, double> &a, const std::pair<double, double> &b,
+                         double tolerance, const std::string &what) {
+    EXPECT_NEAR(a.first, b.first, tolerance * b.first) << what;
+    EXPECT_NEAR(a.second, b.second, tolerance * 1e-3) << what;
+  };
+
+  auto fresh = [&]() {
+    TearDown();
+    SetUp();
+    command("atom_modify map array");
+  };
+  fresh();
+  load_deck();
+  command(fmt::format("run {} post no", split + 600));
+  const auto continuous = probe();
+
+  fresh();
+  load_deck();
+  command(fmt::format("run {} post no\nwrite_restart beads-restart-test.bin\nrun 600 post no", split));
+  expect_same(probe(), continuous, 1e-12, fmt::format("run split at step {}", split));
+
+  fresh();
   command("read_restart beads-restart-test.bin\n"
           "comm_modify vel yes\n"
           "neighbor 1.0e-4 bin\n"
@@ -99,10 +131,7 @@ TEST_F(BeadMonolayer, RestartContinuesTheRun)
           "compute ke all ke\n"
           "thermo_style custom step c_ke\n"
           "run 600 post no");
-  EXPECT_NEAR(value("c_ke"), ke_continuous, 1e-9 * ke_continuous);
-  EXPECT_NEAR(value("z[7]+z[100]+z[250]"), z_continuous, 1e-12);
-  int me = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  expect_same(probe(), continuous, 1e-9, fmt::format("restarted at step {}", split));
   if (me == 0) remove("beads-restart-test.bin");
 }
 
