@@ -46,7 +46,7 @@ def table(title, column, rows):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("what", nargs="?", default="all")
+    ap.add_argument("what", nargs="?", default="all")  # ranks needs mpirun (as root: OMPI_ALLOW_RUN_AS_ROOT*)
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--time", type=float, default=2.0)

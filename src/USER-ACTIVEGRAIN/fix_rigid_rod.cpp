@@ -10,7 +10,9 @@
 #include "molecule.h"
 #include "neighbor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -84,14 +86,18 @@ int FixRigidRod::setmask()
 
 void FixRigidRod::init()
 {
+  // fix rigid/small warns that gravity may be misapplied to bodies from a molecule template
+  // (overlapping particles); rod_template's sphere masses give exactly the solid's weight at
+  // its centre of mass, so the warning does not apply here.
+  Molecule **templates = onemols;
+  onemols = nullptr;
   FixRigidSmall::init();
+  onemols = templates;
   // Any other pair style would treat rod spheres as independent grains or as bodies without
-  // rotational inertia.
-  if (force->pair && !force->pair_match("gran/impulse", 0))
+  // rotational inertia; without one, rods would pass through everything.
+  if (!force->pair || !force->pair_match("gran/impulse", 0))
     error->all(FLERR, "Fix rigid/rod: rods need pair_style gran/impulse (found pair_style {})",
-               force->pair_style);
-  if (!force->pair && comm->me == 0)
-    error->warning(FLERR, "Fix rigid/rod: no pair style defined: rods feel no contacts");
+               force->pair ? force->pair_style : "none");
 }
 
 void FixRigidRod::setup_pre_neighbor()

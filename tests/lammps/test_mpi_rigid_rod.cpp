@@ -1,6 +1,6 @@
 // fix rigid/rod on 1, 2 and 4 ranks with a rod straddling periodic and sub-domain boundaries:
 // the body state it gives contact styles (owned and ghost atoms) is the rod's, with the solid's
-// mass and inertia; a free rod keeps its linear and angular momentum; the polar axis points from
+// mass and inertia; a free rod (no walls, no gravity, its own spheres never collide) keeps its linear and angular momentum; the polar axis points from
 // the tail atom to the nose atom and survives a restart.
 #include "lammps_fixture.h"
 #include "rod_deck.h"
@@ -47,7 +47,8 @@ class RigidRodTest : public LammpsTest {
     command(box() + rod_template(file, tail, nose) +
             "create_atoms 0 single 5.9e-3 1e-4 -1e-4 mol rod 4321 units box\n"
             "fix r all rigid/rod molecule mol rod\n"
-            "comm_modify cutoff 5e-3\n"
+            "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+            "comm_modify vel yes cutoff 5e-3\n"
             "compute t all temp/sphere\nthermo_modify temp t\n"
             "compute c all com\n"
             "compute u all property/atom xu yu zu\n"
@@ -253,7 +254,8 @@ TEST_F(RigidRodTest, RestartKeepsBodyState)
           "read_restart test_mpi_rigid_rod.restart\n"
           "fix molecule_ids all property/atom mol ghost yes\n" + rod_template(file) +
           "fix r all rigid/rod molecule mol rod\n"
-          "comm_modify cutoff 5e-3\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+          "comm_modify vel yes cutoff 5e-3\n"
           "compute t all temp/sphere\nthermo_modify temp t\ncompute c all com\n"
           "run 0 post no");
   command("compute rl all rigid/local r vx vy vz angmomx angmomy angmomz\nrun 0 post no");
@@ -264,4 +266,35 @@ TEST_F(RigidRodTest, RestartKeepsBodyState)
   int dim = 0;
   auto **p = (double **) lmp->modify->get_fix_by_id("r")->extract("polar", dim);
   for (int i = 0; i < lmp->atom->nlocal; ++i) EXPECT_NEAR(ActiveGrain::norm(Vec3(p[i]) - polar), 0.0, 1e-12);
+}
+
+// An untapered rod falls flat onto a still plate (e = 0.5, no gravity): all its spheres touch
+// in the same step, so it must leave at e * 0.05 m/s without spinning. With `processors * 1 1`
+// the rod is split between ranks on 2 and 4 ranks. KNOWN FAILURE, disabled: pair gran/impulse
+// solves each rank's contacts separately; on 2 ranks the rod leaves at 0.092 m/s spinning at
+// 14.7 rad/s (kinetic energy gained). Passes on 1 rank. Enable when contacts of one body are
+// solved together.
+TEST_F(RigidRodTest, DISABLED_FlatRodSplitBetweenRanksBouncesAsOnOneRank)
+{
+  command("units si\natom_style sphere\natom_modify map array\nboundary p p f\nprocessors * 1 1\n"
+          "fix molecule_ids all property/atom mol ghost yes\n"
+          "region box block 0 40e-3 0 40e-3 -1e-3 3e-3\ncreate_box 3 box\n" +
+          rod_deck::rod_template(file, 0.9e-3, 0.9e-3) +
+          "create_atoms 0 single 20e-3 10e-3 0.5e-3 mol rod 1 units box rotate 0 0 0 1\n"
+          "neigh_modify exclude molecule/intra all\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+          "fix r all rigid/rod molecule mol rod\n"
+          "fix plate all wall/impulse zlo 0.0 e 0.5 mu 0.03\n"
+          "comm_modify vel yes cutoff 6e-3\n"
+          "compute t all temp/sphere\nthermo_modify temp t\n"
+          "velocity all set 0 0 -0.05\ntimestep 1e-6\nrun 2000 post no");
+  auto value = [&](const char *expr) {
+    command(std::string("variable probe equal ") + expr);
+    auto *p = (double *) lammps_extract_variable(lmp, "probe", nullptr);
+    const double v = *p;
+    lammps_free(p);
+    return v;
+  };
+  EXPECT_NEAR(value("vcm(all,z)"), 0.025, 1e-4);
+  EXPECT_NEAR(value("omega(all,y)"), 0.0, 1e-2);
 }

@@ -26,8 +26,8 @@ TEST_F(RodRanksTest, RodsInsideSubdomains)
 // Rods at x, y = 0 and 20 mm: on periodic edges and on the sub-domain boundaries of 2 and 4
 // ranks, split between ranks. KNOWN FAILURE, disabled: pair gran/impulse solves the wall
 // contacts of each rank's owned atoms separately, so a rod split between ranks receives two
-// independent impulse solutions per step. Measured (dt 5e-5, seeds 12345/2/3, mean of 4 rods):
-// 1 rank 2.67/2.82/2.73 mm/s, 2 ranks 2.32/2.61/2.54 mm/s (7-13% slower); 4 ranks 2.30.
+// independent impulse solutions per step. Measured (dt 5e-5, seed 12345, mean of 4 rods):
+// 1 rank 2.69 mm/s, 2 ranks 2.28 mm/s (15% slower; single rods up to 38% slower).
 // Enable once the contact solver gathers all contacts of a body on one rank.
 TEST_F(RodRanksTest, DISABLED_RodsAcrossSubdomainBoundaries)
 {

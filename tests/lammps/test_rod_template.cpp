@@ -113,7 +113,8 @@ TEST_F(RodTemplateTest, FixRejectsShortGhostCutoff)
   command(box() + rod_template(file) +
           "create_atoms 0 single 0 0 0 mol rod 1 units box\n"
           "fix r all rigid/rod molecule mol rod\n"
-          "comm_modify cutoff 1e-3\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+          "comm_modify vel yes cutoff 1e-3\n"
           "compute t all temp/sphere\nthermo_modify temp t");
   EXPECT_NE(error_of("run 0").find("Fix rigid/rod: rod extent"), std::string::npos);
 }
@@ -126,5 +127,17 @@ TEST_F(RodTemplateTest, FixRejectsOtherPairStyles)
           "comm_modify cutoff 6e-3\n"
           "pair_style zero 1e-3\npair_coeff * *\n"
           "compute t all temp/sphere\nthermo_modify temp t");
-  EXPECT_NE(error_of("run 0").find("Fix rigid/rod: rods need pair_style gran/impulse"), std::string::npos);
+  EXPECT_NE(error_of("run 0").find("Fix rigid/rod: rods need pair_style gran/impulse (found pair_style zero)"),
+            std::string::npos);
+}
+
+TEST_F(RodTemplateTest, FixRejectsMissingPairStyle)
+{
+  command(box() + rod_template(file) +
+          "create_atoms 0 single 0 0 0 mol rod 1 units box\n"
+          "fix r all rigid/rod molecule mol rod\n"
+          "comm_modify cutoff 6e-3\n"
+          "compute t all temp/sphere\nthermo_modify temp t");
+  EXPECT_NE(error_of("run 0").find("Fix rigid/rod: rods need pair_style gran/impulse (found pair_style none)"),
+            std::string::npos);
 }
