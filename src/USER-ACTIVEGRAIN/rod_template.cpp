@@ -1,5 +1,6 @@
 #include "rod_template.h"
 
+#include "ag_projected_area.h"
 #include "ag_rod_geometry.h"
 
 #include "atom.h"
@@ -10,6 +11,7 @@
 #include "utils.h"
 
 #include <cstdio>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -117,4 +119,17 @@ void RodTemplate::command(int narg, char **arg)
   }
   MPI_Barrier(world);
   input->one(fmt::format("molecule {} {}", id, file));
+
+  // The rod's projected area as simulated (the union of its spheres' discs, as compute
+  // areafrac/chunk counts it), for decks that turn an area fraction into a number of rods.
+  std::vector<double> centres, radii;
+  for (const auto &sphere : g.spheres) {
+    centres.push_back(sphere.x);
+    radii.push_back(sphere.radius);
+  }
+  const auto shares = ActiveGrain::disc_chain_area_shares(centres, radii);
+  const double area = std::accumulate(shares.begin(), shares.end(), 0.0);
+  input->one(fmt::format("variable {}_area internal {:.17g}", id, area));
+  if (comm->me == 0)
+    utils::logmesg(lmp, "Rod_template {}: projected area {:.6g} in variable {}_area\n", id, area, id);
 }

@@ -43,9 +43,14 @@ class LammpsTest : public ::testing::Test {
     return "";
   }
 
-  double equal_variable(const std::string &expr)
+  // Value of an equal-style expression, e.g. value("vx[3]") or value("v_rod_area").
+  double value(const std::string &expr)
   {
-    return lammps_get_thermo(lmp, expr.c_str());
+    command("variable agtest_value equal " + expr);
+    auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+    const double result = *p;
+    lammps_free(p);
+    return result;
   }
 
  private:

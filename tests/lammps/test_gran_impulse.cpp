@@ -45,15 +45,6 @@ class GranImpulse : public LammpsTest {
     command(fmt("set atom {} diameter 0.001\nset atom {} density 2700", id, id));
     command(fmt("velocity all set NULL NULL NULL\nset atom {} vx {} vy {} vz {}", id, vx, vy, vz));
   }
-  // Value of an equal-style expression (the fixture's equal_variable() reads thermo keywords).
-  double value(const std::string &expr)
-  {
-    command("variable agtest_value equal " + expr);
-    auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
-    const double result = *p;
-    lammps_free(p);
-    return result;
-  }
   double v(int id, char c) { return value(fmt("v{}[{}]", c, id)); }
   template <class... Args> static std::string fmt(const std::string &f, Args... args)
   {

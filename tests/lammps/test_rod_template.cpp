@@ -3,12 +3,14 @@
 #include "lammps_fixture.h"
 #include "rod_deck.h"
 
+#include "ag_projected_area.h"
 #include "ag_rod_geometry.h"
 #include "atom.h"
 #include "molecule.h"
 
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 using namespace rod_deck;
 
@@ -65,6 +67,24 @@ TEST_F(RodTemplateTest, MoleculeCarriesSolidMassComInertia)
   EXPECT_EQ(mol->type[SPHERES - 1], 3);
   for (int i = 1; i < SPHERES; ++i) EXPECT_LT(mol->radius[i], mol->radius[i - 1]);
   for (int i = 1; i < SPHERES - 1; ++i) EXPECT_EQ(mol->type[i], 2);
+}
+
+TEST_F(RodTemplateTest, ProjectedAreaVariableIsTheUnionOfTheDiscs)
+{
+  command(box() + rod_template(file));
+  auto *mol = molecule();
+  ASSERT_NE(mol, nullptr);
+  std::vector<double> centres, radii;
+  for (int i = 0; i < mol->natoms; ++i) {
+    centres.push_back(mol->x[i][0]);
+    radii.push_back(mol->radius[i]);
+  }
+  const auto shares = ActiveGrain::disc_chain_area_shares(centres, radii);
+  const double area = std::accumulate(shares.begin(), shares.end(), 0.0);
+  EXPECT_NEAR(value("v_rod_area") / area, 1.0, 1e-12);
+  // Rounded ends and scallops: a little less than the frustum's trapezoid.
+  EXPECT_LT(area, LENGTH * (TAIL + NOSE) / 2);
+  EXPECT_GT(area, 0.85 * LENGTH * (TAIL + NOSE) / 2);
 }
 
 TEST_F(RodTemplateTest, BadDimensionsAreErrors)
