@@ -8,24 +8,17 @@
 
 class RodsAndBeadsTest : public LammpsTest {
  protected:
-  double value(const char *name)
-  {
-    auto *p = (double *) lammps_extract_variable(lmp, name, nullptr);
-    const double v = *p;
-    lammps_free(p);
-    return v;
-  }
   void create(const std::string &vars, double phi_b, double phi_r)
   {
-    command(vars + "\nvariable time index 0\n"
-                   "include " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads/in.rods-and-beads\n"
+    command(vars + "\nvariable out index test_rods_and_beads_out\n"
+                   "include " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads/in.create\n"
                    "run 0 post no");
-    EXPECT_NEAR(value("phi_b_reached"), phi_b, 0.005);
-    EXPECT_NEAR(value("phi_r_reached"), phi_r, 0.005);
+    EXPECT_NEAR(value("v_phi_b_reached"), phi_b, 0.005);
+    EXPECT_NEAR(value("v_phi_r_reached"), phi_r, 0.005);
     // Rods lie flat: every rod atom at the same height.
     const int n = lmp->atom->nlocal;
     for (int i = 0; i < n; ++i)
-      if (lmp->atom->type[i] <= 3) EXPECT_NEAR(lmp->atom->x[i][2], value("zrod"), 1e-9);
+      if (lmp->atom->type[i] <= 3) EXPECT_NEAR(lmp->atom->x[i][2], value("v_zrod"), 1e-9);
   }
 };
 
