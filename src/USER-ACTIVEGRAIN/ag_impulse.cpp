@@ -17,32 +17,54 @@ constexpr int kMaxSubsteps = 200 * kSubsteps;
 // the initial one.
 constexpr double kDirectionTolerance = 1.0e-9;
 
-void tangent_basis(const Vec3 &n, Vec3 &t1, Vec3 &t2)
-{
-  const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  t1 = cross(n, a);
-  t1 = t1 / norm(t1);
-  t2 = cross(n, t1);
-}
+// The tangential part of the impact for a fixed contact: tangent basis t1, t2, and what a
+// substep needs to stop the slip (K restricted to the tangent plane, inverted, and the
+// tangential velocity change per unit normal impulse).
+class TangentialStep {
+ public:
+  TangentialStep(const Mat3 &K, const Vec3 &n) : n_(n)
+  {
+    const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+    t1_ = cross(n, a);
+    t1_ = t1_ / norm(t1_);
+    t2_ = cross(n, t1_);
+    const Vec3 Kt1 = K * t1_, Kt2 = K * t2_, Kn = K * n;
+    const double a11 = dot(t1_, Kt1), a12 = dot(t1_, Kt2), a22 = dot(t2_, Kt2);
+    const double det = a11 * a22 - a12 * a12;
+    inv11_ = a22 / det;
+    inv12_ = -a12 / det;
+    inv22_ = a11 / det;
+    kn1_ = dot(t1_, Kn);
+    kn2_ = dot(t2_, Kn);
+    const double s1 = inv11_ * kn1_ + inv12_ * kn2_, s2 = inv12_ * kn1_ + inv22_ * kn2_;
+    sticking_ratio_ = std::sqrt(s1 * s1 + s2 * s2);
+  }
 
-// Tangential impulse over a substep with normal impulse dp that stops the slip u_t, if the
-// friction cone allows it; otherwise the largest friction impulse mu dp against the current slip.
-Vec3 substep_friction(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Vec3 &t1, const Vec3 &t2,
-                      double mu, double dp)
-{
-  const Vec3 Kt1 = K * t1, Kt2 = K * t2, Kn = K * n;
-  const double a11 = dot(t1, Kt1), a12 = dot(t1, Kt2), a22 = dot(t2, Kt2);
-  const double b1 = -dot(t1, u) - dp * dot(t1, Kn), b2 = -dot(t2, u) - dp * dot(t2, Kn);
-  const double det = a11 * a22 - a12 * a12;
-  const Vec3 stick = t1 * ((a22 * b1 - a12 * b2) / det) + t2 * ((a11 * b2 - a12 * b1) / det);
-  const double stick_norm = norm(stick);
-  const double limit = mu * dp;
-  if (stick_norm <= limit) return stick;
-  const Vec3 ut = u - n * dot(u, n);
-  const double slip = norm(ut);
-  if (slip > 0.0) return ut * (-limit / slip);
-  return stick * (limit / stick_norm);
-}
+  // Tangential over normal impulse that keeps a stuck contact stuck: it stays stuck while this
+  // is within the friction cone.
+  double sticking_ratio() const { return sticking_ratio_; }
+
+  // Tangential impulse over a substep with normal impulse dp that stops the slip of u, if the
+  // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
+  // against the current slip.
+  Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const
+  {
+    const double b1 = -dot(t1_, u) - dp * kn1_, b2 = -dot(t2_, u) - dp * kn2_;
+    const Vec3 stick = t1_ * (inv11_ * b1 + inv12_ * b2) + t2_ * (inv12_ * b1 + inv22_ * b2);
+    const double stick_norm = norm(stick);
+    const double limit = mu * dp;
+    stuck = stick_norm <= limit;
+    if (stuck) return stick;
+    const Vec3 ut = u - n_ * dot(u, n_);
+    const double slip = norm(ut);
+    if (slip > 0.0) return ut * (-limit / slip);
+    return stick * (limit / stick_norm);
+  }
+
+ private:
+  Vec3 n_, t1_, t2_;
+  double inv11_, inv12_, inv22_, kn1_, kn2_, sticking_ratio_;
+};
 
 // Integrate the impact in impulse space with the normal impulse p as the independent variable.
 // Compression lasts while u.n < 0 and the normal impulse does work W_c < 0 then; restitution
@@ -51,8 +73,7 @@ Vec3 substep_friction(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Vec3 &t
 Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, double e_work,
                       double target_separation)
 {
-  Vec3 t1, t2;
-  tangent_basis(n, t1, t2);
+  const TangentialStep tangential(K, n);
   const double un0 = dot(u0, n);
   const double knn = dot(n, K * n);
   // The substep resolves the larger of the normal phases and the sliding phase (slip can take
@@ -61,13 +82,14 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
   const double slip = norm(u0 - n * un0);
   const double normal_scale = std::max(std::fabs(un0), target_separation) / knn;
   const double slip_scale = mu > 0.0 ? slip / (mu * ktt) : 0.0;
-  const double dp = std::max(normal_scale, slip_scale) / kSubsteps;
+  double dp = std::max(normal_scale, slip_scale) / kSubsteps;
 
   Vec3 u = u0, J;
   double work_compression = 0.0, work_restitution = 0.0;
   bool compressing = un0 < 0.0;
   for (int step = 0; step < kMaxSubsteps; ++step) {
-    const Vec3 dJ = n * dp + substep_friction(K, u, n, t1, t2, mu, dp);
+    bool stuck = false;
+    const Vec3 dJ = n * dp + tangential.friction(u, mu, dp, stuck);
     const Vec3 du = K * dJ;
     const double un = dot(u, n), dun = dot(du, n);
     // The fraction s of this substep after which the phase ends (within a substep u.n is
@@ -81,11 +103,10 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
       const double needed = e_work * e_work * -work_compression - work_restitution;
       const double gain = dp * (un + 0.5 * dun);
       if (gain >= needed) {
-        // Solve dp (un s + dun s^2 / 2) = needed for s in [0, 1].
+        // Solve dp (un s + dun s^2 / 2) = needed for s in [0, 1] (the root without cancellation).
         const double a = 0.5 * dp * dun, b = dp * un;
-        s = (std::fabs(a) > 1e-300) ? (-b + std::sqrt(std::max(0.0, b * b + 4.0 * a * needed))) / (2.0 * a)
-                                    : needed / b;
-        s = std::clamp(s, 0.0, 1.0);
+        const double denominator = b + std::sqrt(std::max(0.0, b * b + 4.0 * a * needed));
+        s = denominator > 0.0 ? std::clamp(2.0 * needed / denominator, 0.0, 1.0) : 1.0;
         phase_ends = true;
       }
       work_restitution += dp * s * (un + 0.5 * s * dun);
@@ -95,6 +116,11 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
     }
     J += dJ * s;
     u += du * s;
+    // Once stuck (zero slip) where the cone holds the sticking impulse direction, the contact
+    // stays stuck (K is constant) and u is linear in p: one substep can then cover each
+    // remaining phase, ended exactly as above.
+    if (stuck && dun > 0.0 && tangential.sticking_ratio() <= mu)
+      dp = std::max(dp, 4.0 * (std::fabs(dot(u, n)) + target_separation + norm(u)) * dp / dun);
     if (phase_ends) {
       if (!compressing) break;
       compressing = false;

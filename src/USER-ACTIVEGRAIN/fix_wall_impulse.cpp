@@ -95,9 +95,7 @@ int FixWallImpulse::setmask()
 
 void FixWallImpulse::init()
 {
-  if (!force->pair_match("^gran/impulse", 0))
-    error->all(FLERR, "{} requires pair_style gran/impulse", STYLE);
-  if (!atom->radius_flag) error->all(FLERR, "{} requires atom attribute radius", STYLE);
+  check_wall_host(lmp, STYLE);
   const double dt = update->dt;
   if (amplitude > 0.0 && frequency > 0.0) {
     const double steps_per_period = 1.0 / (frequency * dt);

@@ -51,9 +51,7 @@ void FixWallImpulseRegion::init()
 {
   region = domain->get_region_by_id(region_id);
   if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
-  if (!force->pair_match("^gran/impulse", 0))
-    error->all(FLERR, "{} requires pair_style gran/impulse", STYLE);
-  if (!atom->radius_flag) error->all(FLERR, "{} requires atom attribute radius", STYLE);
+  check_wall_host(lmp, STYLE);
   region->init();
 }
 

@@ -2,9 +2,18 @@
 
 #include "atom.h"
 #include "error.h"
+#include "force.h"
+#include "lammps.h"
 #include "utils.h"
 
 using namespace LAMMPS_NS;
+
+void LAMMPS_NS::check_wall_host(LAMMPS *lmp, const std::string &style)
+{
+  if (!lmp->force->pair_match("^gran/impulse", 0))
+    lmp->error->all(FLERR, "{} requires pair_style gran/impulse", style);
+  if (!lmp->atom->radius_flag) lmp->error->all(FLERR, "{} requires atom attribute radius", style);
+}
 
 void LAMMPS_NS::check_material(Error *error, const std::string &style, double e, double mu)
 {

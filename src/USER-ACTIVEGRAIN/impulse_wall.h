@@ -52,6 +52,9 @@ class WallMaterials : protected Pointers {
   double e_all_ = -1.0, mu_all_ = -1.0;
 };
 
+// Error unless the pair style that resolves wall contacts is defined and atoms have radii.
+void check_wall_host(LAMMPS *lmp, const std::string &style);
+
 // Error unless e is in [0, 1] and mu >= 0: shared by the pair style and the wall fixes.
 void check_material(Error *error, const std::string &style, double e, double mu);
 

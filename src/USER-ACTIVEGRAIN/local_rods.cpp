@@ -65,7 +65,8 @@ void LocalRods::update(int groupbit)
     if (!provider_->body_of_atom(j, body, body_id)) continue;
     auto found = index_of_body.find(body_id);
     if (found == index_of_body.end()) continue;
-    if (domain->closest_image(reference[found->second], j) != j) continue;
+    // closest_image() walks the images after the one it is given: start at the chain's head.
+    if (domain->closest_image(reference[found->second], atom->map(tag[j])) != j) continue;
     members[found->second].push_back(j);
   }
 
@@ -74,19 +75,24 @@ void LocalRods::update(int groupbit)
     std::vector<Vec3> centres;
     std::vector<double> radii;
     tagint lowest = tag[atoms.front()];
-    int lowest_index = atoms.front();
     for (int j : atoms) {
       centres.emplace_back(x[j]);
       radii.push_back(radius[j]);
-      if (tag[j] < lowest) { lowest = tag[j]; lowest_index = j; }
+      lowest = std::min(lowest, tag[j]);
     }
     const auto chain = ActiveGrain::project_rod_chain(centres, radii);
+    // The image used above may be a ghost of an atom this rank owns: atom->map() gives the owned copy.
+    auto owned = [&](tagint id) {
+      const int i = atom->map(id);
+      return (i >= 0 && i < nlocal) ? i : -1;
+    };
     rods_[r].axis = chain.axis;
-    rods_[r].counted_here = lowest_index < nlocal;
+    rods_[r].counted_here = owned(lowest) >= 0;
     rods_[r].area = 0.0;
     for (std::size_t k = 0; k < atoms.size(); ++k) {
       rods_[r].area += chain.shares[k];
-      if (atoms[k] < nlocal) area_share_[atoms[k]] = chain.shares[k];
+      const int i = owned(tag[atoms[k]]);
+      if (i >= 0) area_share_[i] = chain.shares[k];
     }
   }
 }

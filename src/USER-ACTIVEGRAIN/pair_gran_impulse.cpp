@@ -28,6 +28,7 @@
 
 using namespace LAMMPS_NS;
 using ActiveGrain::ContactMaterial;
+using ActiveGrain::Mat3;
 using ActiveGrain::RigidBodyState;
 using ActiveGrain::Vec3;
 
@@ -200,6 +201,7 @@ int PairGranImpulse::body_of_atom(int i)
     key = 2 * atom->tag[i];
     state = RigidBodyState::sphere(atom->rmass[i], atom->radius[i], Vec3(atom->x[i]),
                                    Vec3(atom->v[i]), Vec3(atom->omega[i]));
+    if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
   }
   auto found = body_index.find(key);
   const int body = found != body_index.end() ? found->second : solver.add_body(state);
@@ -233,6 +235,18 @@ void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, Im
   stats[2] = std::max(stats[2], -gap);
 }
 
+// An upper bound of the speed at which atom i closes in on atom j (j < 0: a wall moving at
+// wall_velocity), surface speeds of spins included, from the atoms' own velocities. Pairs and
+// walls farther apart than it carries them in one step are skipped before bodies are built.
+double PairGranImpulse::closing_speed_bound(int i, int j, const Vec3 &wall_velocity) const
+{
+  double **v = atom->v, **omega = atom->omega;
+  double *radius = atom->radius;
+  const Vec3 partner = j >= 0 ? Vec3(v[j]) : wall_velocity;
+  const double spins = norm(Vec3(omega[i])) * radius[i] + (j >= 0 ? norm(Vec3(omega[j])) * radius[j] : 0.0);
+  return norm(Vec3(v[i]) - partner) + spins;
+}
+
 void PairGranImpulse::gather_pair_contacts()
 {
   double **x = atom->x;
@@ -242,6 +256,7 @@ void PairGranImpulse::gather_pair_contacts()
   const int nlocal = atom->nlocal;
   const double reach = neighbor->skin;
   const bool newton = force->newton_pair;
+  const double dt = update->dt;
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -255,8 +270,9 @@ void PairGranImpulse::gather_pair_contacts()
       const double rsq = norm2(d);
       if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
       const double r = std::sqrt(rsq);
-      const Vec3 n = d / r;    // from i to j
       const double gap = r - radsum;
+      if (gap > 0.0 && gap >= closing_speed_bound(i, j, Vec3()) * dt) continue;
+      const Vec3 n = d / r;    // from i to j
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
@@ -274,6 +290,7 @@ void PairGranImpulse::gather_wall_contacts()
     wall_scratch.clear();
     wall->find_wall_contacts(reach, wall_scratch);
     for (const ImpulseWall::Contact &c : wall_scratch) {
+      if (c.gap > 0.0 && c.gap >= closing_speed_bound(c.atom, -1, c.wall_velocity) * update->dt) continue;
       const int b = body_of_atom(c.atom);
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
       add_contact(w, b, -1, c.atom, wall, c.surface, c.point, c.normal, c.gap, c.material, Vec3(),
@@ -339,13 +356,13 @@ void PairGranImpulse::compute(int eflag, int vflag)
           tcontact[i][k] = saved[i][3 + k];
         }
     apply_contact_forces(false);
+    stats[2] = 0.0;
     return;
   }
 
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
-  stats[2] = 0.0;
   gather_pair_contacts();
   gather_wall_contacts();
   const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
@@ -432,7 +449,8 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
 }
 
-// "contact_stats": this rank's last solve: contacts, sweeps, largest overlap, last change.
+// "contact_stats": this rank's last solve (contacts, sweeps, relative impulse change of the
+// last sweep) and the largest overlap of a contact since the run's setup.
 void *PairGranImpulse::extract(const char *name, int &dim)
 {
   dim = 1;

@@ -53,6 +53,7 @@ class PairGranImpulse : public Pair {
   void allocate();
   void grow_buffers();
   int body_of_atom(int i);
+  double closing_speed_bound(int i, int j, const ActiveGrain::Vec3 &wall_velocity) const;
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   void add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall, int surface,
                    const ActiveGrain::Vec3 &point, const ActiveGrain::Vec3 &n, double gap,
@@ -71,6 +72,11 @@ class PairGranImpulse : public Pair {
   double **restitution, **friction;
   double *maxrad;    // largest radius per type (neighbor cutoff)
 
+  // The contact force of the last step also acts in the next initial_integrate. Across a run
+  // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
+  // the atoms: 6 values (force, torque) and the step it belongs to.
+  class FixStoreAtom *pending;
+
   std::vector<RigidBodyProvider *> providers;
   std::vector<ImpulseWall *> walls;
 
@@ -84,13 +90,8 @@ class PairGranImpulse : public Pair {
   int nmax;
   double **fcontact, **tcontact;
 
-  // The contact force of the last step also acts in the next initial_integrate. Across a run
-  // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
-  // the atoms: 6 values (force, torque) and the step it belongs to.
-  class FixStoreAtom *pending;
-
   // Diagnostics of the last solve (extract()): contacts, sweeps, largest overlap.
-  double stats[4];    // contacts, sweeps, largest overlap, last relative impulse change
+  double stats[4];    // contacts, sweeps, largest overlap this run, last relative impulse change
 };
 
 }    // namespace LAMMPS_NS

@@ -10,7 +10,8 @@ namespace LAMMPS_NS {
 
 class RigidBodyProvider {
  public:
-  virtual ~RigidBodyProvider() = default;
+  // noexcept(false) like LAMMPS's Pointers, so that a Fix can also be a RigidBodyProvider.
+  virtual ~RigidBodyProvider() noexcept(false) = default;
   // For atom i (owned or ghost): false if it belongs to no body of this provider; otherwise
   // the body's current state and a body ID that is the same on every rank and every atom of it.
   virtual bool body_of_atom(int i, ActiveGrain::RigidBodyState &body, tagint &body_id) const = 0;

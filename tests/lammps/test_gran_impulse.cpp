@@ -4,6 +4,7 @@
 #include "lammps_fixture.h"
 
 #include "atom.h"
+#include "error.h"
 
 #include <cmath>
 #include <string>
@@ -233,4 +234,30 @@ TEST_F(GranImpulse, AtomStyleWithoutRadiusIsAnError)
           "create_atoms 1 single 0.005 0.005 0.001\nmass 1 1e-6\ncomm_modify vel yes\n"
           "pair_style gran/impulse\npair_coeff * * 0.3 0.05");
   EXPECT_NE(error_of("run 1").find("Pair gran/impulse requires atom attributes radius"), std::string::npos);
+}
+
+TEST_F(GranImpulse, UnsetPairCoefficientsMixGeometrically)
+{
+  bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0, 1);
+  bead(0.006, 0.005, 0.001, -0.05, 0.0, 0.0, 2);
+  command("pair_style gran/impulse\npair_coeff 1 1 0.2 0.05\npair_coeff 2 2 0.8 0.05\n"
+          "fix nve all nve/sphere\nrun 3000");
+  EXPECT_NEAR(v(2, 'x') - v(1, 'x'), std::sqrt(0.2 * 0.8) * 0.15, 1e-12);
+}
+
+TEST_F(GranImpulse, PlatesMovingFarInOneStepGiveAWarning)
+{
+  // 25 steps per period is allowed, but the plates then move 1.26 % of a 1 mm gap per step.
+  bead(0.005, 0.005, 0.0006, 0, 0, 0);
+  command(kPair);
+  command("fix nve all nve/sphere\n"
+          "fix plates all wall/impulse zlo 0.0 gap 0.001 vibrate 0.00005 200 0 e 0.3 mu 0.01\n"
+          "timestep 2e-4");
+  const int before = lmp->error->get_numwarn();
+  command("run 1");
+  EXPECT_GT(lmp->error->get_numwarn(), before);
+  command("timestep 1e-5");
+  const int after = lmp->error->get_numwarn();
+  command("run 1");
+  EXPECT_EQ(lmp->error->get_numwarn(), after);
 }

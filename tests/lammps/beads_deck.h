@@ -1,0 +1,44 @@
+// The example deck (bead monolayer between vibrating plates) set up in-process, and what the
+// dense-packing tests read from it.
+#pragma once
+
+#include "lammps_fixture.h"
+
+#include "force.h"
+#include "pair.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+class BeadMonolayer : public LammpsTest {
+ protected:
+  // The deck with its defaults (360 beads, area fraction 0.75), set up but not run.
+  void load_deck(const std::string &extra_variables = "")
+  {
+    command("variable steps index 0\n" + extra_variables);
+    command("include " ACTIVEGRAIN_SOURCE_DIR "/examples/beads-vibrated/in.beads-vibrated");
+  }
+
+  // Largest overlap of any contact (bead-bead or bead-plate) since the last run's setup, over
+  // all ranks.
+  double largest_overlap()
+  {
+    int dim = 0;
+    auto *stats = (double *) lmp->force->pair->extract("contact_stats", dim);
+    double all = 0;
+    MPI_Allreduce(&stats[2], &all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return all;
+  }
+
+  // Value of an equal-style expression.
+  double value(const std::string &expr)
+  {
+    command("variable agtest_value equal " + expr);
+    auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+    if (!p) throw std::runtime_error("cannot evaluate " + expr);
+    const double result = *p;
+    lammps_free(p);
+    return result;
+  }
+};
