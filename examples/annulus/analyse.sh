@@ -2,7 +2,7 @@
 # Pictures and profiles from an annulus run, with python/activegrain (lengths in bead diameters).
 #   examples/annulus/analyse.sh OUTDIR [R_IN R_OUT]
 # OUTDIR holds annulus.dump from in.annulus*; R_IN and R_OUT are the radii of the run in bead
-# diameters (default 40 60, as in.annulus; 8 20 for in.annulus-small). A floral cell is analysed
+# diameters (default 40 60, as in.annulus; 6 20 for in.annulus-small). A floral cell is analysed
 # as the annulus of radius R_OUT (its lobes are drawn and binned as if cut off).
 # Writes snapshot.png (last frame), profile_r.png/.txt (radial), profile_theta.png/.txt (angular),
 # kymograph.png (bead area fraction against angle and time), polar.txt (rod order per frame, with
