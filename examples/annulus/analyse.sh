@@ -15,7 +15,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 ag() { /usr/bin/python3 -m activegrain "$@"; }
 dump="$out/annulus.dump"
-common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3)
+common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3 --timestep 1e-5)
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 for coord in r theta; do
   ag profile "$dump" "${common[@]}" --coord $coord --species all --plot "$out/profile_$coord.png" > "$out/profile_$coord.txt"

@@ -10,7 +10,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 ag() { /usr/bin/python3 -m activegrain "$@"; }
 dump="$out/box.dump"
-common=(--geometry box --length-unit 1e-3)
+common=(--geometry box --length-unit 1e-3 --timestep 1e-5)
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 ag map "$dump" "${common[@]}" --every 10 --bins 50 50 --species beads -o "$out/map.png"
 for coord in x y; do
