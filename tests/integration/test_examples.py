@@ -11,7 +11,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
 MPIRUN = os.environ.get("ACTIVEGRAIN_MPIRUN", "mpirun")
-STEPS = 300
+STEPS = 2000          # four vibration periods: beads and rods meet the plates and each other
 DT = 1.0e-5
 TOLERANCE = 0.005
 
