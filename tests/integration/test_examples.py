@@ -1,0 +1,97 @@
+"""The example decks: each small variant sets up the requested area fractions (as compute
+areafrac/chunk measures them) and runs a few hundred steps on 1 and 2 ranks without losing atoms."""
+import os
+import pathlib
+import re
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
+MPIRUN = os.environ.get("ACTIVEGRAIN_MPIRUN", "mpirun")
+STEPS = 2000          # four vibration periods: beads and rods meet the plates and each other
+DT = 1.0e-5
+TOLERANCE = 0.005
+
+# (example folder, deck, extra variables, the name the deck reports under)
+DECKS = {
+    "box": ("box", "in.box-small", [], "box"),
+    "annulus": ("annulus", "in.annulus-small", [], "annulus"),
+    "annulus-floral": ("annulus", "in.annulus-small", ["-var", "floral", "yes"], "annulus"),
+    "annulus-tangential": ("annulus", "in.annulus-small", ["-var", "orient", "tangential"], "annulus"),
+    "channel": ("channel", "in.channel-small", [], "channel"),
+}
+
+SETUP = re.compile(r"ActiveGrain (\w+): .*phi_b = ([\d.]+) \(asked ([\d.]+)\), "
+                   r"phi_r = ([\d.]+) \(asked ([\d.]+)\), (\d+) beads, (\d+) rods")
+LOOP = re.compile(r"Loop time of \S+ on (\d+) procs for (\d+) steps with (\d+) atoms")
+
+
+def mpi_prefix(ranks):
+    if ranks == 1:
+        return []
+    flags = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+    if ranks > 2:
+        flags.append("--oversubscribe")
+    return [MPIRUN, *flags, "-np", str(ranks)]
+
+
+def run_deck(name, ranks, out):
+    folder, deck, extra, _ = DECKS[name]
+    cmd = [*mpi_prefix(ranks), LMP, "-in", deck, "-var", "out", str(out),
+           "-var", "time", str(STEPS * DT), "-log", str(out / "log.lammps"), *extra]
+    done = subprocess.run(cmd, cwd=EXAMPLES / folder, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    assert "ERROR" not in done.stdout, done.stdout[-3000:]
+    return done.stdout
+
+
+@pytest.fixture(scope="module")
+def outputs(tmp_path_factory):
+    """Each deck's screen output on 1 and 2 ranks, run once for all tests."""
+    cache = {}
+
+    def get(name, ranks):
+        if (name, ranks) not in cache:
+            out = tmp_path_factory.mktemp(f"{name}-{ranks}")
+            cache[name, ranks] = run_deck(name, ranks, out)
+        return cache[name, ranks]
+    return get
+
+
+def setup_report(stdout, name):
+    found = [m for m in SETUP.finditer(stdout) if m.group(1) == DECKS[name][3]]
+    assert len(found) == 1, stdout[-3000:]
+    m = found[0]
+    return dict(phi_b=float(m.group(2)), asked_b=float(m.group(3)), phi_r=float(m.group(4)),
+                asked_r=float(m.group(5)), beads=int(m.group(6)), rods=int(m.group(7)))
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+@pytest.mark.parametrize("name", sorted(DECKS))
+def test_requested_area_fractions(outputs, name, ranks):
+    report = setup_report(outputs(name, ranks), name)
+    assert report["rods"] > 0 and report["beads"] > 0
+    assert abs(report["phi_b"] - report["asked_b"]) <= TOLERANCE, report
+    assert abs(report["phi_r"] - report["asked_r"]) <= TOLERANCE, report
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+@pytest.mark.parametrize("name", sorted(DECKS))
+def test_run_completes_without_losing_atoms(outputs, name, ranks):
+    stdout = outputs(name, ranks)
+    report = setup_report(stdout, name)
+    loops = [tuple(map(int, m.groups())) for m in LOOP.finditer(stdout)]
+    procs, steps, atoms = loops[-1]
+    assert (procs, steps) == (ranks, STEPS)
+    rod_atoms = 9 * report["rods"]
+    assert atoms == report["beads"] + rod_atoms
+    if name != "channel":      # the new decks also count their species after the run
+        assert f"run completed with {report['beads']} beads and {rod_atoms} rod atoms" in stdout
+
+
+@pytest.mark.parametrize("name", sorted(DECKS))
+def test_same_system_on_1_and_2_ranks(outputs, name):
+    assert setup_report(outputs(name, 1), name) == setup_report(outputs(name, 2), name)
