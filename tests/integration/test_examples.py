@@ -88,8 +88,7 @@ def test_run_completes_without_losing_atoms(outputs, name, ranks):
     assert (procs, steps) == (ranks, STEPS)
     rod_atoms = 9 * report["rods"]
     assert atoms == report["beads"] + rod_atoms
-    if name != "channel":      # the new decks also count their species after the run
-        assert f"run completed with {report['beads']} beads and {rod_atoms} rod atoms" in stdout
+    assert f"run completed with {report['beads']} beads and {rod_atoms} rod atoms" in stdout
 
 
 @pytest.mark.parametrize("name", sorted(DECKS))
