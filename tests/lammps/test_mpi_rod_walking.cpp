@@ -29,7 +29,7 @@ TEST_F(RodRanksTest, RodsInsideSubdomains)
 // independent impulse solutions per step. Measured (dt 5e-5, seeds 12345/2/3, mean of 4 rods):
 // 1 rank 2.67/2.82/2.73 mm/s, 2 ranks 2.32/2.61/2.54 mm/s (7-13% slower); 4 ranks 2.30.
 // Enable once the contact solver gathers all contacts of a body on one rank.
-TEST_F(RodRanksTest, DISABLED_RodsAcrossSubdomainBoundaries)
+TEST_F(RodRanksTest, RodsAcrossSubdomainBoundaries)
 {
   compare({{"shift", "-10e-3"}, {"dt", "5e-5"}, {"nside", "2"}}, 0.1, 0.05);
 }
