@@ -366,6 +366,7 @@ void PairGranImpulse::gather_pair_contacts()
   const int nlist = list->inum + (list->ghost ? list->gnum : 0);
   for (int ii = 0; ii < nlist; ii++) {
     const int i = list->ilist[ii];
+    if (i >= atom->nlocal && !solved_here[i]) continue;    // most ghosts: nothing to solve here
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;

@@ -45,15 +45,22 @@ std::string bounce_deck(const std::string &file)
       "timestep 1e-5\n"
       "variable vx equal vcm(all,x)\nvariable vy equal vcm(all,y)\nvariable vz equal vcm(all,z)\n"
       "variable wx equal omega(all,x)\nvariable wy equal omega(all,y)\nvariable wz equal omega(all,z)\n"
-      "run " + std::to_string(BOUNCE_STEPS) + " post no\n";
+      // The impulse the plate reports delivering, summed over the steps, and the rod's mass and
+      // initial vertical velocity, for momentum balance (no gravity).
+      "variable jz equal f_plates[6]\nfix delivered all ave/time 1 1 1 v_jz ave running\n"
+      "variable mass equal mass(all)\nvariable vz0 equal $(vcm(all,z):%.17g)\n"
+      "run " + std::to_string(BOUNCE_STEPS) + " post no\n"
+      // Mean of the samples at steps 0 (setup: nothing delivered) to BOUNCE_STEPS.
+      "variable delivered equal f_delivered*" + std::to_string(BOUNCE_STEPS + 1) + "\n"
+      "variable momentum equal v_mass*(v_vz-v_vz0)\n";
 }
 
-// v (3), omega (3)
-std::array<double, 6> motion(void *lmp)
+// v (3), omega (3), impulse delivered by the plate (z), momentum change of the rod (z)
+std::array<double, 8> motion(void *lmp)
 {
-  std::array<double, 6> m{};
-  const char *names[6] = {"vx", "vy", "vz", "wx", "wy", "wz"};
-  for (int k = 0; k < 6; ++k) {
+  std::array<double, 8> m{};
+  const char *names[8] = {"vx", "vy", "vz", "wx", "wy", "wz", "delivered", "momentum"};
+  for (int k = 0; k < 8; ++k) {
     auto *value = (double *) lammps_extract_variable(lmp, names[k], nullptr);
     m[k] = value ? *value : 0.0;
     lammps_free(value);
@@ -83,7 +90,7 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
 
   // A plugin registers its commands in one instance at a time: the world instance goes first.
   LammpsTest::TearDown();
-  std::array<double, 6> serial{};
+  std::array<double, 8> serial{};
   if (me == 0) {
     const char *args[] = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
     auto *alone = new LAMMPS_NS::LAMMPS(6, const_cast<char **>(args), MPI_COMM_SELF);
@@ -94,7 +101,7 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
     serial = motion(alone);
     delete alone;
   }
-  MPI_Bcast(serial.data(), 6, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Bcast(serial.data(), 8, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   LammpsTest::SetUp();
   command(bounce_deck(file));
   const auto parallel = motion(lmp);
@@ -114,6 +121,10 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
     EXPECT_NEAR(parallel[k], serial[k], 1e-12 * speed) << "v " << k;
     EXPECT_NEAR(parallel[3 + k] * half_length, serial[3 + k] * half_length, 1e-12 * speed) << "omega " << k;
   }
+  // The plate reports each contact's impulse once: it is the rod's change of momentum.
+  EXPECT_GT(parallel[7], 0.0);
+  EXPECT_NEAR(parallel[6], parallel[7], 1e-12 * parallel[7]);
+  EXPECT_NEAR(parallel[6], serial[6], 1e-12 * serial[6]);
   if (me == 0)
     std::printf("[ measured ] %d ranks: v = %.15g %.15g %.15g, 1 rank: %.15g %.15g %.15g\n", nprocs,
                 parallel[0], parallel[1], parallel[2], serial[0], serial[1], serial[2]);
