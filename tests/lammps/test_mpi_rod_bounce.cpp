@@ -23,9 +23,10 @@ const int BOUNCE_STEPS = 150;    // 0.05 mm at 0.1 m/s: the rod hits after ~50 s
 
 // One rod centred on the sub-domain corner (0, 0) of 2 and 4 ranks, along 30 degrees in the
 // plane, its lowest points 0.05 mm above a still plate, dropped flat onto it.
-std::string bounce_deck(const std::string &file)
+// `newton` is "on" or "off".
+std::string bounce_deck(const std::string &file, const std::string &newton)
 {
-  return "units si\natom_style sphere\natom_modify map array\nboundary p p f\n"
+  return "newton " + newton + "\nunits si\natom_style sphere\natom_modify map array\nboundary p p f\n"
          "fix molecule_ids all property/atom mol ghost yes\n"
          "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 3 box\n"
          "comm_modify vel yes cutoff 6e-3\nneighbor 5e-4 bin\n" + rod_template(file) +
@@ -73,6 +74,7 @@ std::array<double, 8> motion(void *lmp)
 class RodBounceTest : public LammpsTest {
  protected:
   const std::string file = "test_mpi_rod_bounce.mol";
+  void compare_with_one_rank(const std::string &newton);
   void TearDown() override
   {
     LammpsTest::TearDown();
@@ -84,6 +86,18 @@ class RodBounceTest : public LammpsTest {
 
 TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
 {
+  compare_with_one_rank("on");
+}
+
+// With newton off no force reaches an owner from a ghost but through this style's own reverse
+// communication: the same bounce.
+TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRankNewtonOff)
+{
+  compare_with_one_rank("off");
+}
+
+void RodBounceTest::compare_with_one_rank(const std::string &newton)
+{
   int me = 0, nprocs = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &me);
   MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
@@ -94,7 +108,7 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
   if (me == 0) {
     const char *args[] = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
     auto *alone = new LAMMPS_NS::LAMMPS(6, const_cast<char **>(args), MPI_COMM_SELF);
-    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file)).c_str());
+    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file, newton)).c_str());
     char message[2048] = "";
     if (lammps_has_error(alone)) lammps_get_last_error_message(alone, message, sizeof(message));
     EXPECT_STREQ(message, "");
@@ -103,7 +117,7 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
   }
   MPI_Bcast(serial.data(), 8, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   LammpsTest::SetUp();
-  command(bounce_deck(file));
+  command(bounce_deck(file, newton));
   const auto parallel = motion(lmp);
 
   // Bounced: moving up, slower than it came (e = 0.5 at the contacts).
@@ -126,8 +140,8 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
   EXPECT_NEAR(parallel[6], parallel[7], 1e-12 * parallel[7]);
   EXPECT_NEAR(parallel[6], serial[6], 1e-12 * serial[6]);
   if (me == 0)
-    std::printf("[ measured ] %d ranks: v = %.15g %.15g %.15g, 1 rank: %.15g %.15g %.15g\n", nprocs,
-                parallel[0], parallel[1], parallel[2], serial[0], serial[1], serial[2]);
+    std::printf("[ measured ] newton %s, %d ranks: v = %.15g %.15g %.15g, 1 rank: %.15g %.15g %.15g\n",
+                newton.c_str(), nprocs, parallel[0], parallel[1], parallel[2], serial[0], serial[1], serial[2]);
 }
 
 // On several ranks the solver rank of a rod must see a neighbor cutoff beyond the rod's far end.
@@ -135,7 +149,7 @@ TEST_F(RodBounceTest, ShortGhostCutoffIsAnErrorOnSeveralRanks)
 {
   int nprocs = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-  const std::string deck = bounce_deck(file);
+  const std::string deck = bounce_deck(file, "on");
   // Ghost cutoff 4 mm: enough for fix rigid/rod (half the rod), not for the rod's contacts.
   std::string shorter = deck;
   shorter.replace(shorter.find("cutoff 6e-3"), 11, "cutoff 4e-3");
