@@ -22,13 +22,15 @@ const double TILT_DEG = std::asin(-SLOPE) * 180.0 / M_PI;
 const int BOUNCE_STEPS = 150;    // 0.05 mm at 0.1 m/s: the rod hits after ~50 steps
 
 // One rod centred on the sub-domain corner (0, 0) of 2 and 4 ranks, along 30 degrees in the
-// plane, its lowest points 0.05 mm above a still plate, dropped flat onto it.
-// `newton` is "on" or "off".
-std::string bounce_deck(const std::string &file, const std::string &newton)
+// plane, its lowest points 0.05 mm above a still plate, dropped flat onto it. `newton` is "on"
+// or "off". With `bead`, a 1 mm bead falls with it 0.1 mm above its nose, to be hit by the
+// rebounding rod: its atom and the nose atom are both ghosts on the rod's solver rank (which
+// owns the tail) on 2 and 4 ranks.
+std::string bounce_deck(const std::string &file, const std::string &newton, bool bead = false)
 {
   return "newton " + newton + "\nunits si\natom_style sphere\natom_modify map array\nboundary p p f\n"
          "fix molecule_ids all property/atom mol ghost yes\n"
-         "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 3 box\n"
+         "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 4 box\n"
          "comm_modify vel yes cutoff 6e-3\nneighbor 5e-4 bin\n" + rod_template(file) +
       "create_atoms 0 single 0 0 5e-4 mol rod 1 units box rotate 0 0 0 1\n"
       "displace_atoms all rotate 0 0 5e-4 0 1 0 " + std::to_string(TILT_DEG) + " units box\n"
@@ -36,12 +38,17 @@ std::string bounce_deck(const std::string &file, const std::string &newton)
       "variable bottom atom z-radius\ncompute lowest all reduce min v_bottom\n"
       "thermo_style custom step c_lowest\nrun 0 post no\n"
       "variable lift equal 5e-5-c_lowest\ndisplace_atoms all move 0 0 ${lift} units box\n"
+      "group rod type 1 2 3\n" +
+      (bead ? "create_atoms 4 single $(x[9]) $(y[9]) $(z[9]+radius[9]+6e-4) units box\n"
+              "set type 4 diameter 1e-3\nset type 4 density 2700\ngroup bead type 4\n"
+              "fix beads bead nve/sphere\nvariable bead_vz equal vcm(bead,z)\n"
+            : "") +
       "velocity all set 0.05 0.02 -0.1 units box\n"
       // Default solver settings: a flat rod's 9 contacts leave its impulses underdetermined, so
       // that many more sweeps wander and amplify round-off (differences of 1e-13 in the input
       // grow to ~1 % after 1000 sweeps); 8 sweeps keep the result a smooth function of it.
       "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-      "fix rods all rigid/rod molecule mol rod\n"
+      "fix rods rod rigid/rod molecule mol rod\n"
       "fix plates all wall/impulse zlo 0.0 e 0.5 mu 0.2\n"
       "timestep 1e-5\n"
       "variable vx equal vcm(all,x)\nvariable vy equal vcm(all,y)\nvariable vz equal vcm(all,z)\n"
@@ -56,12 +63,13 @@ std::string bounce_deck(const std::string &file, const std::string &newton)
       "variable momentum equal v_mass*(v_vz-v_vz0)\n";
 }
 
-// v (3), omega (3), impulse delivered by the plate (z), momentum change of the rod (z)
-std::array<double, 8> motion(void *lmp)
+// v (3), omega (3) of all atoms, impulse delivered by the plate (z), momentum change of all
+// atoms (z), the bead's velocity (z; 0 without a bead)
+std::array<double, 9> motion(void *lmp)
 {
-  std::array<double, 8> m{};
-  const char *names[8] = {"vx", "vy", "vz", "wx", "wy", "wz", "delivered", "momentum"};
-  for (int k = 0; k < 8; ++k) {
+  std::array<double, 9> m{};
+  const char *names[9] = {"vx", "vy", "vz", "wx", "wy", "wz", "delivered", "momentum", "bead_vz"};
+  for (int k = 0; k < 9; ++k) {
     auto *value = (double *) lammps_extract_variable(lmp, names[k], nullptr);
     m[k] = value ? *value : 0.0;
     lammps_free(value);
@@ -74,7 +82,7 @@ std::array<double, 8> motion(void *lmp)
 class RodBounceTest : public LammpsTest {
  protected:
   const std::string file = "test_mpi_rod_bounce.mol";
-  void compare_with_one_rank(const std::string &newton);
+  void compare_with_one_rank(const std::string &newton, bool bead = false);
   void TearDown() override
   {
     LammpsTest::TearDown();
@@ -96,7 +104,14 @@ TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRankNewtonOff)
   compare_with_one_rank("off");
 }
 
-void RodBounceTest::compare_with_one_rank(const std::string &newton)
+// A rod whose contacts include a bead hit by its nose: the rod-bead contact is solved on the
+// rod's solver rank from two ghost atoms, with the rod's plate contacts.
+TEST_F(RodBounceTest, SplitRodHitsBeadAsOnOneRank)
+{
+  compare_with_one_rank("on", true);
+}
+
+void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
 {
   int me = 0, nprocs = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &me);
@@ -104,28 +119,29 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton)
 
   // A plugin registers its commands in one instance at a time: the world instance goes first.
   LammpsTest::TearDown();
-  std::array<double, 8> serial{};
+  std::array<double, 9> serial{};
   if (me == 0) {
     const char *args[] = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
     auto *alone = new LAMMPS_NS::LAMMPS(6, const_cast<char **>(args), MPI_COMM_SELF);
-    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file, newton)).c_str());
+    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file, newton, bead)).c_str());
     char message[2048] = "";
     if (lammps_has_error(alone)) lammps_get_last_error_message(alone, message, sizeof(message));
     EXPECT_STREQ(message, "");
     serial = motion(alone);
     delete alone;
   }
-  MPI_Bcast(serial.data(), 8, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Bcast(serial.data(), 9, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   LammpsTest::SetUp();
-  command(bounce_deck(file, newton));
+  command(bounce_deck(file, newton, bead));
   const auto parallel = motion(lmp);
 
   // Bounced: moving up, slower than it came (e = 0.5 at the contacts).
   EXPECT_GT(serial[2], 0.0);
   EXPECT_LT(serial[2], 0.1);
   if (nprocs > 1) {
-    // Split between ranks indeed: no rank owns all 9 atoms.
-    int most = 0, mine = lmp->atom->nlocal;
+    // Split between ranks indeed: no rank owns all 9 atoms of the rod (types 1 to 3).
+    int most = 0, mine = 0;
+    for (int i = 0; i < lmp->atom->nlocal; ++i) mine += lmp->atom->type[i] <= 3;
     MPI_Allreduce(&mine, &most, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     EXPECT_LT(most, SPHERES);
   }
@@ -135,7 +151,12 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton)
     EXPECT_NEAR(parallel[k], serial[k], 1e-12 * speed) << "v " << k;
     EXPECT_NEAR(parallel[3 + k] * half_length, serial[3 + k] * half_length, 1e-12 * speed) << "omega " << k;
   }
-  // The plate reports each contact's impulse once: it is the rod's change of momentum.
+  if (bead) {
+    // Hit by the rod: thrown up.
+    EXPECT_GT(serial[8], 0.0);
+    EXPECT_NEAR(parallel[8], serial[8], 1e-12 * speed);
+  }
+  // The plate reports each contact's impulse once: it is the change of momentum.
   EXPECT_GT(parallel[7], 0.0);
   EXPECT_NEAR(parallel[6], parallel[7], 1e-12 * parallel[7]);
   EXPECT_NEAR(parallel[6], serial[6], 1e-12 * serial[6]);
