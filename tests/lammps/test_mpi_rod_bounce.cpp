@@ -21,14 +21,27 @@ const double SLOPE = 0.5 * (NOSE - TAIL) / LENGTH;
 const double TILT_DEG = std::asin(-SLOPE) * 180.0 / M_PI;
 const int BOUNCE_STEPS = 150;    // 0.05 mm at 0.1 m/s: the rod hits after ~50 steps
 
-// One rod centred on the sub-domain corner (0, 0) of 2 and 4 ranks, along 30 degrees in the
-// plane, its lowest points 0.05 mm above a still plate, dropped flat onto it. `newton` is "on"
-// or "off". With `bead`, a 1 mm bead falls with it 0.1 mm above its nose, to be hit by the
-// rebounding rod: its atom and the nose atom are both ghosts on the rod's solver rank (which
-// owns the tail) on 2 and 4 ranks.
-std::string bounce_deck(const std::string &file, const std::string &newton, bool bead = false)
+struct Bounce {
+  std::string newton = "on";
+  // A 1 mm bead falls with the rod 0.1 mm above its nose, to be hit by the rebounding rod: its
+  // atom and the nose atom are both ghosts on the rod's solver rank (which owns the tail).
+  bool bead = false;
+  // The plate is the bottom face of a block region (fix wall/impulse/region) that ends at the
+  // periodic box, and the rod lies across the periodic corner: its solver rank sees part of it
+  // as ghost images outside the box.
+  bool region_wall = false;
+};
+
+// One rod centred on the sub-domain corner (0, 0) of 2 and 4 ranks (or on the periodic corner),
+// along 30 degrees in the plane, its lowest points 0.05 mm above a still plate, dropped flat
+// onto it.
+std::string bounce_deck(const std::string &file, const Bounce &setup)
 {
-  return "newton " + newton + "\nunits si\natom_style sphere\natom_modify map array\nboundary p p f\n"
+  const std::string plate = setup.region_wall
+      ? "region floor block -6e-3 6e-3 -6e-3 6e-3 0 INF open 1 open 2 open 3 open 4 open 6 units box\n"
+        "fix plates all wall/impulse/region floor e 0.5 mu 0.2\nvariable jz equal f_plates[3]\n"
+      : "fix plates all wall/impulse zlo 0.0 e 0.5 mu 0.2\nvariable jz equal f_plates[6]\n";
+  return "newton " + setup.newton + "\nunits si\natom_style sphere\natom_modify map array\nboundary p p f\n"
          "fix molecule_ids all property/atom mol ghost yes\n"
          "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 4 box\n"
          "comm_modify vel yes cutoff 6e-3\nneighbor 5e-4 bin\n" + rod_template(file) +
@@ -37,9 +50,10 @@ std::string bounce_deck(const std::string &file, const std::string &newton, bool
       "displace_atoms all rotate 0 0 5e-4 0 0 1 30 units box\n"
       "variable bottom atom z-radius\ncompute lowest all reduce min v_bottom\n"
       "thermo_style custom step c_lowest\nrun 0 post no\n"
-      "variable lift equal 5e-5-c_lowest\ndisplace_atoms all move 0 0 ${lift} units box\n"
+      "variable lift equal 5e-5-c_lowest\ndisplace_atoms all move 0 0 ${lift} units box\n" +
+      (setup.region_wall ? "displace_atoms all move 6e-3 6e-3 0 units box\n" : "") +
       "group rod type 1 2 3\n" +
-      (bead ? "create_atoms 4 single $(x[9]) $(y[9]) $(z[9]+radius[9]+6e-4) units box\n"
+      (setup.bead ? "create_atoms 4 single $(x[9]) $(y[9]) $(z[9]+radius[9]+6e-4) units box\n"
               "set type 4 diameter 1e-3\nset type 4 density 2700\ngroup bead type 4\n"
               "fix beads bead nve/sphere\nvariable bead_vz equal vcm(bead,z)\n"
             : "") +
@@ -48,14 +62,13 @@ std::string bounce_deck(const std::string &file, const std::string &newton, bool
       // that many more sweeps wander and amplify round-off (differences of 1e-13 in the input
       // grow to ~1 % after 1000 sweeps); 8 sweeps keep the result a smooth function of it.
       "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-      "fix rods rod rigid/rod molecule mol rod\n"
-      "fix plates all wall/impulse zlo 0.0 e 0.5 mu 0.2\n"
-      "timestep 1e-5\n"
+      "fix rods rod rigid/rod molecule mol rod\n" +
+      plate + "timestep 1e-5\n"
       "variable vx equal vcm(all,x)\nvariable vy equal vcm(all,y)\nvariable vz equal vcm(all,z)\n"
       "variable wx equal omega(all,x)\nvariable wy equal omega(all,y)\nvariable wz equal omega(all,z)\n"
       // The impulse the plate reports delivering, summed over the steps, and the rod's mass and
       // initial vertical velocity, for momentum balance (no gravity).
-      "variable jz equal f_plates[6]\nfix delivered all ave/time 1 1 1 v_jz ave running\n"
+      "fix delivered all ave/time 1 1 1 v_jz ave running\n"
       "variable mass equal mass(all)\nvariable vz0 equal $(vcm(all,z):%.17g)\n"
       "run " + std::to_string(BOUNCE_STEPS) + " post no\n"
       // Mean of the samples at steps 0 (setup: nothing delivered) to BOUNCE_STEPS.
@@ -82,7 +95,7 @@ std::array<double, 9> motion(void *lmp)
 class RodBounceTest : public LammpsTest {
  protected:
   const std::string file = "test_mpi_rod_bounce.mol";
-  void compare_with_one_rank(const std::string &newton, bool bead = false);
+  void compare_with_one_rank(const Bounce &setup);
   void TearDown() override
   {
     LammpsTest::TearDown();
@@ -94,24 +107,36 @@ class RodBounceTest : public LammpsTest {
 
 TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)
 {
-  compare_with_one_rank("on");
+  compare_with_one_rank(Bounce());
 }
 
 // With newton off no force reaches an owner from a ghost but through this style's own reverse
 // communication: the same bounce.
 TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRankNewtonOff)
 {
-  compare_with_one_rank("off");
+  Bounce setup;
+  setup.newton = "off";
+  compare_with_one_rank(setup);
 }
 
 // A rod whose contacts include a bead hit by its nose: the rod-bead contact is solved on the
 // rod's solver rank from two ghost atoms, with the rod's plate contacts.
 TEST_F(RodBounceTest, SplitRodHitsBeadAsOnOneRank)
 {
-  compare_with_one_rank("on", true);
+  Bounce setup;
+  setup.bead = true;
+  compare_with_one_rank(setup);
 }
 
-void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
+// A region wall meets the ghost images of a rod's atoms outside the box where their owners are.
+TEST_F(RodBounceTest, RodAcrossPeriodicCornerBouncesOnRegionWallAsOnOneRank)
+{
+  Bounce setup;
+  setup.region_wall = true;
+  compare_with_one_rank(setup);
+}
+
+void RodBounceTest::compare_with_one_rank(const Bounce &setup)
 {
   int me = 0, nprocs = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &me);
@@ -123,7 +148,7 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
   if (me == 0) {
     const char *args[] = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
     auto *alone = new LAMMPS_NS::LAMMPS(6, const_cast<char **>(args), MPI_COMM_SELF);
-    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file, newton, bead)).c_str());
+    lammps_commands_string(alone, ("plugin load " ACTIVEGRAIN_PLUGIN_FILE "\n" + bounce_deck(file, setup)).c_str());
     char message[2048] = "";
     if (lammps_has_error(alone)) lammps_get_last_error_message(alone, message, sizeof(message));
     EXPECT_STREQ(message, "");
@@ -132,7 +157,7 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
   }
   MPI_Bcast(serial.data(), 9, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   LammpsTest::SetUp();
-  command(bounce_deck(file, newton, bead));
+  command(bounce_deck(file, setup));
   const auto parallel = motion(lmp);
 
   // Bounced: moving up, slower than it came (e = 0.5 at the contacts).
@@ -151,7 +176,7 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
     EXPECT_NEAR(parallel[k], serial[k], 1e-12 * speed) << "v " << k;
     EXPECT_NEAR(parallel[3 + k] * half_length, serial[3 + k] * half_length, 1e-12 * speed) << "omega " << k;
   }
-  if (bead) {
+  if (setup.bead) {
     // Hit by the rod: thrown up.
     EXPECT_GT(serial[8], 0.0);
     EXPECT_NEAR(parallel[8], serial[8], 1e-12 * speed);
@@ -162,7 +187,7 @@ void RodBounceTest::compare_with_one_rank(const std::string &newton, bool bead)
   EXPECT_NEAR(parallel[6], serial[6], 1e-12 * serial[6]);
   if (me == 0)
     std::printf("[ measured ] newton %s, %d ranks: v = %.15g %.15g %.15g, 1 rank: %.15g %.15g %.15g\n",
-                newton.c_str(), nprocs, parallel[0], parallel[1], parallel[2], serial[0], serial[1], serial[2]);
+                setup.newton.c_str(), nprocs, parallel[0], parallel[1], parallel[2], serial[0], serial[1], serial[2]);
 }
 
 // On several ranks the solver rank of a rod must see a neighbor cutoff beyond the rod's far end.
@@ -170,7 +195,7 @@ TEST_F(RodBounceTest, ShortGhostCutoffIsAnErrorOnSeveralRanks)
 {
   int nprocs = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-  const std::string deck = bounce_deck(file, "on");
+  const std::string deck = bounce_deck(file, Bounce());
   // Ghost cutoff 4 mm: enough for fix rigid/rod (half the rod), not for the rod's contacts.
   std::string shorter = deck;
   shorter.replace(shorter.find("cutoff 6e-3"), 11, "cutoff 4e-3");
