@@ -36,6 +36,15 @@ static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
 static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
 
+// splitmix64's finalizer: a well-mixed 64-bit hash, for the contacts' solve order.
+static std::uint64_t mix(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), pending(nullptr), ghost_pairs(false), nmax(0), fcontact(nullptr), tcontact(nullptr),
@@ -328,8 +337,13 @@ void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, Im
   tagint *tag = atom->tag;
   const int wall_index = wall ? static_cast<int>(std::find(walls.begin(), walls.end(), wall) - walls.begin()) : -1;
   const tagint tag1 = atom1 >= 0 ? tag[atom1] : 0, tag2 = tag[atom2];
-  found.push_back({std::make_tuple(wall_index, surface, std::min(tag1, tag2), std::max(tag1, tag2)), body1,
-                   body2, r1, r2, n, material, min_separation, {atom1, atom2, wall, surface, point}});
+  const tagint low = std::min(tag1, tag2), high = std::max(tag1, tag2);
+  std::uint64_t shuffle = mix(static_cast<std::uint64_t>(update->ntimestep));
+  for (const std::uint64_t part : {static_cast<std::uint64_t>(wall_index + 1), static_cast<std::uint64_t>(surface),
+                                   static_cast<std::uint64_t>(low), static_cast<std::uint64_t>(high)})
+    shuffle = mix(shuffle ^ part);
+  found.push_back({std::make_tuple(shuffle, wall_index, surface, low, high), body1, body2, r1, r2, n,
+                   material, min_separation, {atom1, atom2, wall, surface, point}});
   stats[2] = std::max(stats[2], -gap);
 }
 

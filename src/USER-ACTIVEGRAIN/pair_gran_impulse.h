@@ -14,6 +14,7 @@ PairStyle(gran/impulse,PairGranImpulse);
 #include "impulse_wall.h"
 #include "pair.h"
 
+#include <cstdint>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -51,10 +52,13 @@ class PairGranImpulse : public Pair {
     ActiveGrain::Vec3 point;
   };
   // A contact found this step, before it goes to the solver. Contacts are solved in the order
-  // of their key (wall index or -1, surface, atom tags), not in the order ranks find them, so
-  // that a body solved on one rank sees the same Gauss-Seidel order on any number of ranks.
+  // of their key, not in the order ranks find them, so that a body solved on one rank sees the
+  // same Gauss-Seidel order on any number of ranks: a hash of the step and the contact's
+  // identity (wall index or -1, surface, atom tags), then that identity. The order is thus
+  // shuffled anew each step: with the default sweeps a fixed order (tail to nose, or nose to
+  // tail) biases the walking speed of rods by about 10%.
   struct FoundContact {
-    std::tuple<int, int, tagint, tagint> key;
+    std::tuple<std::uint64_t, int, int, tagint, tagint> key;
     int body1, body2;
     ActiveGrain::Vec3 r1, r2, n;
     ActiveGrain::ContactMaterial material;

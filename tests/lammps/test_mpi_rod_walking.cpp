@@ -27,7 +27,7 @@ TEST_F(RodRanksTest, RodsInsideSubdomains)
 // ranks, split between ranks. pair gran/impulse solves all contacts of a rod on one rank, so a
 // split rod gets one impulse solution per step (before: one per rank that owned some of its
 // atoms, 15% slower on 2 ranks). Measured (dt 5e-5, seed 12345, mean of 4 rods): 1 rank
-// 2.47 mm/s, 2 ranks 2.46, 4 ranks 2.48; single rods within 6% (chaotic bouncing amplifies
+// 3.27 mm/s, 2 ranks 3.30, 4 ranks 3.28; single rods within 6% (chaotic bouncing amplifies
 // round-off differences).
 TEST_F(RodRanksTest, RodsAcrossSubdomainBoundaries)
 {
