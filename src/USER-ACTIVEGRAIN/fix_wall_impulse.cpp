@@ -125,7 +125,8 @@ double FixWallImpulse::base_vz(double t) const
   return MY_2PI * frequency * amplitude * std::cos(MY_2PI * frequency * t + phase);
 }
 
-void FixWallImpulse::find_wall_contacts(double reach, std::vector<Contact> &contacts)
+void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &atoms,
+                                        std::vector<Contact> &contacts)
 {
   const double t = time_now();
   const double zb = base_z(t), vb = base_vz(t);
@@ -137,8 +138,9 @@ void FixWallImpulse::find_wall_contacts(double reach, std::vector<Contact> &cont
   double *radius = atom->radius;
   int *type = atom->type;
   int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) {
+    if (!atoms[i] || !(mask[i] & groupbit)) continue;
     const double r = radius[i];
     const double base_gap = x[i][2] - r - zb;
     if (base_gap < reach)

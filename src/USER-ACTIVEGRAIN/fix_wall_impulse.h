@@ -23,7 +23,8 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   double compute_scalar() override;
   double compute_vector(int) override;
 
-  void find_wall_contacts(double reach, std::vector<Contact> &contacts) override;
+  void find_wall_contacts(double reach, const std::vector<char> &atoms,
+                          std::vector<Contact> &contacts) override;
   void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) override;
 
  private:

@@ -55,7 +55,8 @@ void FixWallImpulseRegion::init()
   region->init();
 }
 
-void FixWallImpulseRegion::find_wall_contacts(double reach, std::vector<Contact> &contacts)
+void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<char> &atoms,
+                                              std::vector<Contact> &contacts)
 {
   memset(delivered, 0, sizeof(delivered));
   const bool moving = region->dynamic_check();
@@ -66,16 +67,22 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, std::vector<Contact>
   double *radius = atom->radius;
   int *type = atom->type;
   int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) {
+    if (!atoms[i] || !(mask[i] & groupbit)) continue;
+    // A ghost may be a periodic image outside the box (and an owned atom may have drifted out
+    // since the last reneighboring): meet the region in the box, the same for every copy. The
+    // normal and gap do not depend on the image; the contact point stays on this image.
+    double xbox[3] = {x[i][0], x[i][1], x[i][2]};
+    domain->remap(xbox);
     // Atoms whose centre has left the region's inside are not pulled back.
-    if (!region->match(x[i][0], x[i][1], x[i][2])) continue;
-    const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + reach);
+    if (!region->match(xbox[0], xbox[1], xbox[2])) continue;
+    const int nc = region->surface(xbox[0], xbox[1], xbox[2], radius[i] + reach);
     for (int ic = 0; ic < nc; ic++) {
       const Region::Contact &rc = region->contact[ic];
       const Vec3 n = Vec3(rc.delx, rc.dely, rc.delz) / rc.r;    // from the wall to the atom
       Vec3 wall_velocity;
-      if (moving) region->velocity_contact(&wall_velocity.x, x[i], ic);
+      if (moving) region->velocity_contact(&wall_velocity.x, xbox, ic);
       contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], rc.r - radius[i], wall_velocity,
                           materials.of_type(type[i])});
     }

@@ -24,7 +24,8 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
   void init() override;
   double compute_vector(int) override;
 
-  void find_wall_contacts(double reach, std::vector<Contact> &contacts) override;
+  void find_wall_contacts(double reach, const std::vector<char> &atoms,
+                          std::vector<Contact> &contacts) override;
   void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) override;
 
  private:

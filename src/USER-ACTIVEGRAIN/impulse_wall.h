@@ -1,5 +1,5 @@
 // What pair gran/impulse needs from a wall fix (fix wall/impulse, fix wall/impulse/region): the
-// geometry of the contacts of owned atoms with the wall, and a place to report the impulse the
+// geometry of the contacts of atoms with the wall, and a place to report the impulse the
 // wall delivered. The pair style finds wall fixes by dynamic_cast over Modify's fix list and
 // solves wall and particle contacts together.
 #pragma once
@@ -15,7 +15,7 @@ namespace LAMMPS_NS {
 class ImpulseWall {
  public:
   struct Contact {
-    int atom;                               // owned atom index
+    int atom;                               // owned or ghost atom index
     int surface;                            // which surface of the fix (for its output)
     ActiveGrain::Vec3 normal;               // unit, from the wall into the atom
     ActiveGrain::Vec3 point;                // contact point (on the atom's surface)
@@ -26,9 +26,11 @@ class ImpulseWall {
 
   // noexcept(false) like LAMMPS's Pointers, so that a Fix can also be an ImpulseWall.
   virtual ~ImpulseWall() noexcept(false) = default;
-  // Append the contacts of owned atoms of the fix's group whose gap is below reach; the pair
-  // style decides which of them close within the step. Called once per force computation.
-  virtual void find_wall_contacts(double reach, std::vector<Contact> &contacts) = 0;
+  // Append the contacts of the atoms (owned or ghost) of the fix's group with atoms[i] != 0
+  // whose gap is below reach; the pair style decides which of them close within the step.
+  // Called once per force computation.
+  virtual void find_wall_contacts(double reach, const std::vector<char> &atoms,
+                                  std::vector<Contact> &contacts) = 0;
   // The impulse delivered to atoms through a surface in this force computation.
   virtual void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) = 0;
 };

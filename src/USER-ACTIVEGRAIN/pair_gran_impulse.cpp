@@ -36,9 +36,18 @@ static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
 static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
 
+// splitmix64's finalizer: a well-mixed 64-bit hash, for the contacts' solve order.
+static std::uint64_t mix(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
-    maxrad(nullptr), pending(nullptr), nmax(0), fcontact(nullptr), tcontact(nullptr),
+    maxrad(nullptr), pending(nullptr), ghost_pairs(false), nmax(0), fcontact(nullptr), tcontact(nullptr),
     stats{0, 0, 0, 0}
 {
   single_enable = 0;
@@ -130,8 +139,6 @@ void PairGranImpulse::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "{} requires ghost atoms to store velocity: use comm_modify vel yes", STYLE);
 
-  neighbor->add_request(this, NeighConst::REQ_SIZE);
-
   pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
     pending = dynamic_cast<FixStoreAtom *>(
@@ -142,6 +149,19 @@ void PairGranImpulse::init_style()
   for (Fix *fix : modify->get_fix_list()) {
     if (auto provider = dynamic_cast<RigidBodyProvider *>(fix)) providers.push_back(provider);
     if (auto wall = dynamic_cast<ImpulseWall *>(fix)) walls.push_back(wall);
+  }
+
+  // A rigid body's solver rank also solves contacts between two ghost atoms (a ghost atom of
+  // its body with a neighbor): that needs the neighbors of ghost atoms, a full list (there is
+  // no half list with ghosts for newton on, nor one with per-atom cutoffs: cutoffs come from
+  // the largest radii per type). Without rigid bodies, the usual half list.
+  ghost_pairs = !providers.empty();
+  if (ghost_pairs) {
+    if (atom->map_style == Atom::MAP_NONE)
+      error->all(FLERR, "{} with rigid bodies requires an atom map (atom_modify map array)", STYLE);
+    neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_GHOST);
+  } else {
+    neighbor->add_request(this, NeighConst::REQ_SIZE);
   }
 
   // Largest radius of each type present now: neighbor cutoffs are radius sums plus the skin.
@@ -182,6 +202,90 @@ void PairGranImpulse::grow_buffers()
     memset(&tcontact[0][0], 0, sizeof(double) * 3 * nall);
   }
   atom_body.assign(nall, -1);
+}
+
+// Rigid body IDs of all atoms, and which atoms' contacts this rank solves: owned beads, and the
+// atoms of bodies whose lowest visible tag is owned here, one copy each: the owned one, else
+// the ghost image nearest that lowest-tag atom. A rank that owns an atom of a body sees all of
+// it (check_ghost_cutoff), so it finds the same lowest tag as every other such rank: exactly
+// one rank solves each body.
+void PairGranImpulse::assign_contact_ranks()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  tagint *tag = atom->tag;
+  rigid_body_id.assign(nall, 0);
+  solved_here.assign(nall, 0);
+  std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
+  if (!ghost_pairs) return;
+
+  std::unordered_map<tagint, tagint> lowest_tag;
+  RigidBodyState state;
+  for (int i = 0; i < nall; i++)
+    for (RigidBodyProvider *provider : providers)
+      if (provider->body_of_atom(i, state, rigid_body_id[i])) {
+        auto found = lowest_tag.emplace(rigid_body_id[i], tag[i]);
+        if (!found.second) found.first->second = std::min(found.first->second, tag[i]);
+        break;
+      }
+  for (int i = 0; i < nall; i++) {
+    if (!rigid_body_id[i]) continue;
+    const int solver_atom = atom->map(lowest_tag[rigid_body_id[i]]);    // the owned copy if any
+    solved_here[i] = 0;
+    if (solver_atom < 0 || solver_atom >= nlocal) continue;
+    // closest_image() walks the images after the one it is given: start at the chain's head.
+    const int head = atom->map(tag[i]);
+    solved_here[i] = (head < nlocal ? head : domain->closest_image(solver_atom, head)) == i;
+  }
+}
+
+// Whether this rank solves the contact of i with neighbor j, so that each physical contact is
+// solved on one rank, once: a contact with a rigid body's atom from that atom if its body has
+// the lower ID of the two and i is the copy solved here; a pair of beads from the owned bead i
+// (with a full list or a ghost j listed on both ranks, only from the lower tag).
+bool PairGranImpulse::solves_pair(int i, int j) const
+{
+  const tagint body_i = rigid_body_id[i], body_j = rigid_body_id[j];
+  if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here[i];
+  const int nlocal = atom->nlocal;
+  if (i >= nlocal) return false;
+  if (ghost_pairs || (!force->newton_pair && j >= nlocal)) return atom->tag[i] < atom->tag[j];
+  return true;
+}
+
+// On several ranks, the solver rank of a body sees all its atoms and their contacts only if
+// its ghost shell reaches a neighbor cutoff beyond the body's far end: span + neighbor cutoff
+// <= ghost cutoff. The span (largest distance between two atoms of a body) is measured where a
+// whole body is visible (fix rigid/small's ghost cutoff check ensures one rank sees it).
+void PairGranImpulse::check_ghost_cutoff()
+{
+  if (comm->nprocs == 1) return;
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  std::unordered_map<tagint, std::vector<int>> visible;    // bodies with an owned atom
+  for (int i = 0; i < nlocal; i++)
+    if (rigid_body_id[i]) visible[rigid_body_id[i]];
+  for (int j = 0; j < (int) rigid_body_id.size(); j++) {
+    auto found = visible.find(rigid_body_id[j]);
+    if (found != visible.end()) found->second.push_back(j);
+  }
+  double span = 0.0;
+  for (auto &body : visible) {
+    const std::vector<int> &atoms = body.second;
+    for (std::size_t a = 0; a < atoms.size(); a++)
+      for (std::size_t b = a + 1; b < atoms.size(); b++) {
+        double d[3] = {x[atoms[b]][0] - x[atoms[a]][0], x[atoms[b]][1] - x[atoms[a]][1],
+                       x[atoms[b]][2] - x[atoms[a]][2]};
+        domain->minimum_image(d[0], d[1], d[2]);
+        span = std::max(span, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      }
+  }
+  double largest = 0.0;
+  MPI_Allreduce(&span, &largest, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double needed = largest + neighbor->cutneighmax;
+  if (needed > comm->get_comm_cutoff())
+    error->all(FLERR, "{}: rigid body span {:.6g} + neighbor cutoff {:.6g} exceeds the ghost cutoff "
+               "{:.6g}: use comm_modify cutoff {:.6g}", STYLE, largest, neighbor->cutneighmax,
+               comm->get_comm_cutoff(), needed);
 }
 
 // The solver body of atom i: its rigid body if a provider claims it (all atoms of one body
@@ -230,9 +334,27 @@ void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, Im
   const Vec3 u = (b2.v + cross(b2.omega, r2)) - (b1.v + cross(b1.omega, r1));
   if (gap + dot(u, n) * dt >= 0.0) return;
   const double min_separation = gap < 0.0 ? beta * -gap / dt : 0.0;
-  solver.add_contact_arms(body1, body2, r1, r2, n, material, min_separation);
-  atom_contacts.push_back({atom1, atom2, wall, surface, point});
+  tagint *tag = atom->tag;
+  const int wall_index = wall ? static_cast<int>(std::find(walls.begin(), walls.end(), wall) - walls.begin()) : -1;
+  const tagint tag1 = atom1 >= 0 ? tag[atom1] : 0, tag2 = tag[atom2];
+  const tagint low = std::min(tag1, tag2), high = std::max(tag1, tag2);
+  std::uint64_t shuffle = mix(static_cast<std::uint64_t>(update->ntimestep));
+  for (const std::uint64_t part : {static_cast<std::uint64_t>(wall_index + 1), static_cast<std::uint64_t>(surface),
+                                   static_cast<std::uint64_t>(low), static_cast<std::uint64_t>(high)})
+    shuffle = mix(shuffle ^ part);
+  found.push_back({std::make_tuple(shuffle, wall_index, surface, low, high), body1, body2, r1, r2, n,
+                   material, min_separation, {atom1, atom2, wall, surface, point}});
   stats[2] = std::max(stats[2], -gap);
+}
+
+void PairGranImpulse::add_found_contacts()
+{
+  std::sort(found.begin(), found.end(),
+            [](const FoundContact &a, const FoundContact &b) { return a.key < b.key; });
+  for (const FoundContact &c : found) {
+    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation);
+    atom_contacts.push_back(c.atoms);
+  }
 }
 
 // An upper bound of the speed at which atom i closes in on atom j (j < 0: a wall moving at
@@ -252,19 +374,17 @@ void PairGranImpulse::gather_pair_contacts()
   double **x = atom->x;
   double *radius = atom->radius;
   int *type = atom->type;
-  tagint *tag = atom->tag;
-  const int nlocal = atom->nlocal;
   const double reach = neighbor->skin;
-  const bool newton = force->newton_pair;
   const double dt = update->dt;
 
-  for (int ii = 0; ii < list->inum; ii++) {
+  const int nlist = list->inum + (list->ghost ? list->gnum : 0);
+  for (int ii = 0; ii < nlist; ii++) {
     const int i = list->ilist[ii];
+    if (i >= atom->nlocal && !solved_here[i]) continue;    // most ghosts: nothing to solve here
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      // With newton off a pair with a ghost is listed on both ranks: keep it on one.
-      if (!newton && j >= nlocal && tag[j] < tag[i]) continue;
+      if (!solves_pair(i, j)) continue;
       Vec3 d = Vec3(x[j]) - Vec3(x[i]);
       const double radsum = radius[i] + radius[j];
       const double rsq = norm2(d);
@@ -288,7 +408,7 @@ void PairGranImpulse::gather_wall_contacts()
   const double reach = neighbor->skin;
   for (ImpulseWall *wall : walls) {
     wall_scratch.clear();
-    wall->find_wall_contacts(reach, wall_scratch);
+    wall->find_wall_contacts(reach, solved_here, wall_scratch);
     for (const ImpulseWall::Contact &c : wall_scratch) {
       if (c.gap > 0.0 && c.gap >= closing_speed_bound(c.atom, -1, c.wall_velocity) * update->dt) continue;
       const int b = body_of_atom(c.atom);
@@ -357,14 +477,21 @@ void PairGranImpulse::compute(int eflag, int vflag)
         }
     apply_contact_forces(false);
     stats[2] = 0.0;
+    if (ghost_pairs) {
+      assign_contact_ranks();
+      check_ghost_cutoff();
+    }
     return;
   }
 
+  assign_contact_ranks();
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
+  found.clear();
   gather_pair_contacts();
   gather_wall_contacts();
+  add_found_contacts();
   const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
   stats[0] = solver.num_contacts();
   stats[1] = result.sweeps;
@@ -464,5 +591,7 @@ void *PairGranImpulse::extract(const char *name, int &dim)
 double PairGranImpulse::memory_usage()
 {
   return 6.0 * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
+      (double) rigid_body_id.capacity() * sizeof(tagint) + (double) solved_here.capacity() +
+      (double) found.capacity() * sizeof(FoundContact) +
       (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
 }

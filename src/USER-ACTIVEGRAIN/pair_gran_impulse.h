@@ -14,6 +14,8 @@ PairStyle(gran/impulse,PairGranImpulse);
 #include "impulse_wall.h"
 #include "pair.h"
 
+#include <cstdint>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -49,10 +51,27 @@ class PairGranImpulse : public Pair {
     int surface;
     ActiveGrain::Vec3 point;
   };
+  // A contact found this step, before it goes to the solver. Contacts are solved in the order
+  // of their key, not in the order ranks find them, so that a body solved on one rank sees the
+  // same Gauss-Seidel order on any number of ranks: a hash of the step and the contact's
+  // identity (wall index or -1, surface, atom tags), then that identity. The order is thus
+  // shuffled anew each step: with the default sweeps a fixed order (tail to nose, or nose to
+  // tail) biases the walking speed of rods by about 10%.
+  struct FoundContact {
+    std::tuple<std::uint64_t, int, int, tagint, tagint> key;
+    int body1, body2;
+    ActiveGrain::Vec3 r1, r2, n;
+    ActiveGrain::ContactMaterial material;
+    double min_separation;
+    AtomContact atoms;
+  };
 
   void allocate();
   void grow_buffers();
   int body_of_atom(int i);
+  void assign_contact_ranks();
+  bool solves_pair(int i, int j) const;
+  void check_ghost_cutoff();
   double closing_speed_bound(int i, int j, const ActiveGrain::Vec3 &wall_velocity) const;
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   void add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall, int surface,
@@ -61,6 +80,7 @@ class PairGranImpulse : public Pair {
                    const ActiveGrain::Vec3 &r2);
   void gather_pair_contacts();
   void gather_wall_contacts();
+  void add_found_contacts();
   void distribute_impulses();
   void apply_contact_forces(bool store);
 
@@ -81,10 +101,20 @@ class PairGranImpulse : public Pair {
   std::vector<ImpulseWall *> walls;
 
   ActiveGrain::ContactSolver solver;
-  std::vector<AtomContact> atom_contacts;
+  std::vector<FoundContact> found;
+  std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
   std::vector<ImpulseWall::Contact> wall_scratch;
   std::unordered_map<tagint, int> body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
   std::vector<int> atom_body;                     // solver body of each atom, -1 before lookup
+
+  // Which rank solves what (assign_contact_ranks): every contact of a rigid body's atom is
+  // solved on the body's solver rank, the owner of its lowest-tag atom, from one copy of each
+  // atom (the owned one, else the ghost image nearest that lowest-tag atom). Bead contacts
+  // stay with the owned beads.
+  bool ghost_pairs;                     // rigid bodies exist: full neighbor list with ghosts
+  std::vector<tagint> rigid_body_id;    // per owned or ghost atom: its body's ID, 0 for a bead
+  std::vector<char> solved_here;        // per atom: this rank solves its wall contacts (and, for
+                                        // a body's atom, the contacts its body decides)
 
   // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
   int nmax;

@@ -48,7 +48,7 @@ class RigidRodTest : public LammpsTest {
             "create_atoms 0 single 5.9e-3 1e-4 -1e-4 mol rod 4321 units box\n"
             "fix r all rigid/rod molecule mol rod\n"
             "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-            "comm_modify vel yes cutoff 5e-3\n"
+            "comm_modify vel yes cutoff 5e-3\nneighbor 1e-4 bin\n"
             "compute t all temp/sphere\nthermo_modify temp t\n"
             "compute c all com\n"
             "compute u all property/atom xu yu zu\n"
@@ -255,7 +255,7 @@ TEST_F(RigidRodTest, RestartKeepsBodyState)
           "fix molecule_ids all property/atom mol ghost yes\n" + rod_template(file) +
           "fix r all rigid/rod molecule mol rod\n"
           "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-          "comm_modify vel yes cutoff 5e-3\n"
+          "comm_modify vel yes cutoff 5e-3\nneighbor 1e-4 bin\n"
           "compute t all temp/sphere\nthermo_modify temp t\ncompute c all com\n"
           "run 0 post no");
   command("compute rl all rigid/local r vx vy vz angmomx angmomy angmomz\nrun 0 post no");
@@ -274,7 +274,7 @@ TEST_F(RigidRodTest, RestartKeepsBodyState)
 // solves each rank's contacts separately; on 2 ranks the rod leaves at 0.092 m/s spinning at
 // 14.7 rad/s (kinetic energy gained). Passes on 1 rank. Enable when contacts of one body are
 // solved together.
-TEST_F(RigidRodTest, DISABLED_FlatRodSplitBetweenRanksBouncesAsOnOneRank)
+TEST_F(RigidRodTest, FlatRodSplitBetweenRanksBouncesAsOnOneRank)
 {
   command("units si\natom_style sphere\natom_modify map array\nboundary p p f\nprocessors * 1 1\n"
           "fix molecule_ids all property/atom mol ghost yes\n"
