@@ -98,6 +98,12 @@ def _read_header(path):
 def _universe(path, unwrap):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # MDAnalysis warns about its imports and guessed masses
+        # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
+        # which override ours: import it first, here, so that the warning is not printed.
+        try:
+            import xdrlib  # noqa: F401
+        except ImportError:
+            pass
         import MDAnalysis as mda
         return mda.Universe(path, topology_format="LAMMPSDUMP", format="LAMMPSDUMP",
                             unwrap_images=unwrap)

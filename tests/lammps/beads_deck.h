@@ -30,15 +30,4 @@ class BeadMonolayer : public LammpsTest {
     MPI_Allreduce(&stats[2], &all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     return all;
   }
-
-  // Value of an equal-style expression.
-  double value(const std::string &expr)
-  {
-    command("variable agtest_value equal " + expr);
-    auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
-    if (!p) throw std::runtime_error("cannot evaluate " + expr);
-    const double result = *p;
-    lammps_free(p);
-    return result;
-  }
 };

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,7 @@ class LammpsTest : public ::testing::Test {
   {
     command("variable agtest_value equal " + expr);
     auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+    if (!p) throw std::runtime_error("cannot evaluate " + expr);
     const double result = *p;
     lammps_free(p);
     return result;

@@ -91,14 +91,7 @@ class RigidRodTest : public LammpsTest {
     return out;
   }
 
-  double equal(const char *name)
-  {
-    auto *value = (double *) lammps_extract_variable(lmp, name, nullptr);
-    const double v = *value;
-    lammps_free(value);
-    return v;
-  }
-  Vec3 com() { return {equal("cx"), equal("cy"), equal("cz")}; }
+  Vec3 com() { return {value("v_cx"), value("v_cy"), value("v_cz")}; }
 
   // The integrator's own state of the one rod: v and angular momentum, on every rank.
   std::vector<double> exact_state()
@@ -288,13 +281,6 @@ TEST_F(RigidRodTest, FlatRodSplitBetweenRanksBouncesAsOnOneRank)
           "comm_modify vel yes cutoff 6e-3\n"
           "compute t all temp/sphere\nthermo_modify temp t\n"
           "velocity all set 0 0 -0.05\ntimestep 1e-6\nrun 2000 post no");
-  auto value = [&](const char *expr) {
-    command(std::string("variable probe equal ") + expr);
-    auto *p = (double *) lammps_extract_variable(lmp, "probe", nullptr);
-    const double v = *p;
-    lammps_free(p);
-    return v;
-  };
   EXPECT_NEAR(value("vcm(all,z)"), 0.025, 1e-4);
   EXPECT_NEAR(value("omega(all,y)"), 0.0, 1e-2);
 }
