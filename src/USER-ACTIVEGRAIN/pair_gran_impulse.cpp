@@ -273,9 +273,9 @@ void PairGranImpulse::check_ghost_cutoff()
     const std::vector<int> &atoms = body.second;
     for (std::size_t a = 0; a < atoms.size(); a++)
       for (std::size_t b = a + 1; b < atoms.size(); b++) {
-        double d[3] = {x[atoms[b]][0] - x[atoms[a]][0], x[atoms[b]][1] - x[atoms[a]][1],
-                       x[atoms[b]][2] - x[atoms[a]][2]};
-        domain->minimum_image(d[0], d[1], d[2]);
+        double image[3];
+        domain->closest_image(x[atoms[a]], x[atoms[b]], image);
+        const double d[3] = {image[0] - x[atoms[a]][0], image[1] - x[atoms[a]][1], image[2] - x[atoms[a]][2]};
         span = std::max(span, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
       }
   }
