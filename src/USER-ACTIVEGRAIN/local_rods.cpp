@@ -65,8 +65,7 @@ void LocalRods::update(int groupbit)
     if (!provider_->body_of_atom(j, body, body_id)) continue;
     auto found = index_of_body.find(body_id);
     if (found == index_of_body.end()) continue;
-    // closest_image() walks the images after the one it is given: start at the chain's head.
-    if (domain->closest_image(reference[found->second], atom->map(tag[j])) != j) continue;
+    if (nearest_copy(atom, domain, reference[found->second], j) != j) continue;
     members[found->second].push_back(j);
   }
 

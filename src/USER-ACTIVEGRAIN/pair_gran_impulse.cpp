@@ -232,9 +232,8 @@ void PairGranImpulse::assign_contact_ranks()
     const int solver_atom = atom->map(lowest_tag[rigid_body_id[i]]);    // the owned copy if any
     solved_here[i] = 0;
     if (solver_atom < 0 || solver_atom >= nlocal) continue;
-    // closest_image() walks the images after the one it is given: start at the chain's head.
-    const int head = atom->map(tag[i]);
-    solved_here[i] = (head < nlocal ? head : domain->closest_image(solver_atom, head)) == i;
+    const int owned = atom->map(tag[i]);    // map() prefers the owned copy
+    solved_here[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
   }
 }
 

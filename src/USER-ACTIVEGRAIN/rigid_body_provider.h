@@ -4,6 +4,8 @@
 #pragma once
 
 #include "ag_rigid_body.h"
+#include "atom.h"
+#include "domain.h"
 #include "lmptype.h"
 
 namespace LAMMPS_NS {
@@ -16,5 +18,13 @@ class RigidBodyProvider {
   // the body's current state and a body ID that is the same on every rank and every atom of it.
   virtual bool body_of_atom(int i, ActiveGrain::RigidBodyState &body, tagint &body_id) const = 0;
 };
+
+// The copy of atom j (owned or ghost image) nearest atom i: how the styles pick one image of
+// each atom of a body. Domain::closest_image(i, j) only walks the same-tag images after j, so
+// the walk starts at the chain's head, atom->map(tag).
+inline int nearest_copy(Atom *atom, Domain *domain, int i, int j)
+{
+  return domain->closest_image(i, atom->map(atom->tag[j]));
+}
 
 }    // namespace LAMMPS_NS
