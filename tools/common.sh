@@ -29,18 +29,58 @@ lammps_release() {
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; elif command -v sudo >/dev/null; then sudo "$@"; else return 1; fi; }
 
-# Install the Debian packages we build and test with, only when something is missing.
+# The Debian packages of tools/debian-packages whose probe fails on this machine, one a line.
+# ACTIVEGRAIN_ASSUME_MISSING (package names) makes the probes of those fail: the tests use it to
+# check what a machine without them is told.
+missing_packages() {
+  local pkg kind name pkgs=() modules=()
+  while read -r pkg kind name _; do
+    case "$pkg" in ''|'#'*) continue ;; esac
+    case " ${ACTIVEGRAIN_ASSUME_MISSING:-} " in *" $pkg "*) echo "$pkg"; continue ;; esac
+    case "$kind" in
+      command) command -v "$name" >/dev/null || echo "$pkg" ;;
+      header)  printf '#include <%s>\n' "$name" | c++ -x c++ -E - >/dev/null 2>&1 || echo "$pkg" ;;
+      python)  pkgs+=("$pkg"); modules+=("$name") ;;
+      *)       die "tools/debian-packages: unknown probe '$kind' for $pkg" ;;
+    esac
+  done < "$AG_ROOT/tools/debian-packages"
+  [ ${#modules[@]} -eq 0 ] && return 0
+  # Only Debian's python3 sees Debian's python3-* packages; find_spec does not import them.
+  /usr/bin/python3 - "${pkgs[@]}" "${modules[@]}" 2>/dev/null <<'PY' || printf '%s\n' "${pkgs[@]}"
+import importlib.util, sys
+args = sys.argv[1:]
+half = len(args) // 2
+for pkg, module in zip(args[:half], args[half:]):
+    if importlib.util.find_spec(module) is None:
+        print(pkg)
+PY
+}
+
+# Install what tools/debian-packages lists and this machine lacks. When that cannot be done, one
+# ERROR line names the Debian packages, before anything is configured.
 ensure_system_packages() {
-  local pkgs="g++ cmake make ccache xz-utils openmpi-bin libopenmpi-dev libfftw3-dev libgtest-dev
-              python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
-              python3-mdanalysis python3-ase"
-  local missing=()
-  for p in $pkgs; do dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'ok installed' || missing+=("$p"); done
+  local missing=() unknown=() p
+  mapfile -t missing < <(missing_packages)
   [ ${#missing[@]} -eq 0 ] && return 0
-  say "installing Debian packages: ${missing[*]}"
-  as_root env DEBIAN_FRONTEND=noninteractive apt-get update -qq \
-    && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null \
-    || die "could not install ${missing[*]}: run as root or with sudo, or install them yourself"
+  local list="${missing[*]}" log="$AG_CACHE/apt.log"
+  command -v apt-get >/dev/null \
+    || die "missing Debian packages: $list; there is no apt-get here to install them: install them (or the same software) yourself"
+  # Not root: sudo, if it works without a password or can ask for one on a terminal.
+  [ "$(id -u)" = 0 ] || { command -v sudo >/dev/null && { [ -t 0 ] || sudo -n true 2>/dev/null; }; } \
+    || die "missing Debian packages: $list; run as root or with sudo, or install them yourself: apt-get install $list"
+  mkdir -p "$AG_CACHE"
+  say "installing Debian packages: $list"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get update -qq >"$log" 2>&1 \
+    || die "missing Debian packages: $list; 'apt-get update' failed as root (log: $log): install them yourself: apt-get install $list"
+  for p in "${missing[@]}"; do
+    apt-cache policy "$p" 2>/dev/null | grep -q 'Candidate: [^(]' || unknown+=("$p")
+  done
+  [ ${#unknown[@]} -eq 0 ] \
+    || die "Debian package not found by apt: ${unknown[*]} (needed: $list); these are in Debian 12's main archive: check the apt sources"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >>"$log" 2>&1 \
+    || die "could not install Debian packages $list (log: $log)"
+  mapfile -t missing < <(missing_packages)
+  [ ${#missing[@]} -eq 0 ] || die "installed, but still not usable: Debian packages ${missing[*]} (see tools/debian-packages for what is probed)"
 }
 
 # Fetch Debian's orig tarball of LAMMPS with a private apt configuration: the deb-src entry is

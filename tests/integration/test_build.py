@@ -1,7 +1,11 @@
 """The build: the lmp wrapper loads the plugin, and bad LAMMPS set-ups fail early with one clear line."""
+import ast
 import os
 import pathlib
+import re
+import shutil
 import subprocess
+import sys
 import textwrap
 
 import pytest
@@ -124,3 +128,92 @@ def test_host_lammps_without_required_package(tmp_path, missing):
                f"-DLAMMPS_INSTALL_DIR={prefix}"])
     assert out.returncode != 0
     assert f"built without the {missing} package" in out.stderr.replace("\n  ", " ")
+
+
+# --- system packages: complete, and a missing one is named in one ERROR line ------------------
+
+def package_table():
+    """(package, probe kind, probe name, needed-by) rows of tools/debian-packages."""
+    rows = []
+    for line in (ROOT / "tools" / "debian-packages").read_text().splitlines():
+        if line.strip() and not line.lstrip().startswith("#"):
+            rows.append(tuple(line.split()))
+    return rows
+
+
+def test_every_find_package_has_a_debian_package():
+    """Each find_package of our CMake files (and LAMMPS's FFTW3, which the build selects) is listed."""
+    needed = {"FFTW3"}
+    for f in [ROOT / "CMakeLists.txt", *ROOT.glob("cmake/*.cmake"), *ROOT.glob("tests/**/CMakeLists.txt")]:
+        needed |= set(re.findall(r"find_package\(\s*(\w+)", f.read_text()))
+    assert "-DFFT=FFTW3" in (ROOT / "tools" / "common.sh").read_text()
+    listed = {row[3].split(":", 1)[1] for row in package_table() if row[3].startswith("cmake:")}
+    assert needed <= listed, f"not in tools/debian-packages: {needed - listed}"
+
+
+def third_party_imports():
+    """Top-level modules imported by the repository's Python that are neither stdlib nor ours."""
+    ours = {"activegrain"} | {p.stem for p in ROOT.rglob("*.py")}
+    found = set()
+    for f in ROOT.rglob("*.py"):
+        if "build" in f.relative_to(ROOT).parts[0]:
+            continue
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.Import):
+                found |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                found.add(node.module.split(".")[0])
+    return {m for m in found if m not in sys.stdlib_module_names and m not in ours}
+
+
+def test_every_python_import_has_a_debian_package():
+    listed = {row[2] for row in package_table() if row[1] == "python"}
+    imports = third_party_imports()
+    assert {"numpy", "MDAnalysis", "ase"} <= imports     # the scan sees what we know we use
+    assert imports <= listed, f"not in tools/debian-packages: {imports - listed}"
+
+
+def shim(tmp_path, **scripts):
+    """A folder of stand-in commands, to put first on PATH."""
+    bin_dir = tmp_path / "shim"
+    bin_dir.mkdir(exist_ok=True)
+    for name, body in scripts.items():
+        (bin_dir / name).write_text("#!/bin/sh\n" + body + "\n")
+        (bin_dir / name).chmod(0o755)
+    return bin_dir
+
+
+MISSING_SETS = {"test libraries": "libgtest-dev libgmock-dev", "MPI": "openmpi-bin libopenmpi-dev",
+                "FFTW": "libfftw3-dev"}
+
+
+@pytest.mark.parametrize("what", list(MISSING_SETS))
+def test_missing_package_without_root(tmp_path, what):
+    bin_dir = shim(tmp_path, id='[ "$1" = -u ] && echo 1000 || exec /usr/bin/id "$@"', sudo="exit 1",
+                   **{"apt-get": "echo apt-get must not run >&2; exit 100"})
+    msg = tools_error(tmp_path, ACTIVEGRAIN_ASSUME_MISSING=MISSING_SETS[what],
+                      PATH=f"{bin_dir}:{os.environ['PATH']}")
+    assert MISSING_SETS[what] in msg and "root" in msg
+
+
+@pytest.mark.parametrize("what", list(MISSING_SETS))
+def test_missing_package_not_in_apt(tmp_path, what):
+    bin_dir = shim(tmp_path, id='[ "$1" = -u ] && echo 0 || exec /usr/bin/id "$@"',
+                   **{"apt-get": '[ "$1" = update ] || [ "$2" = update ] || [ "$3" = update ] && exit 0; exit 100',
+                      "apt-cache": 'echo "N: Unable to locate package $2" >&2'})
+    msg = tools_error(tmp_path, ACTIVEGRAIN_ASSUME_MISSING=MISSING_SETS[what],
+                      PATH=f"{bin_dir}:{os.environ['PATH']}")
+    assert "not found by apt" in msg and MISSING_SETS[what] in msg
+
+
+def test_missing_package_without_apt(tmp_path):
+    """A machine without apt-get (not Debian): told what to install, nothing attempted."""
+    tools = ["bash", "dirname", "nproc", "id", "cat", "c++", "cc1plus", "mpirun", "mpicxx", "cmake", "make",
+             "ccache", "xz", "g++", "mkdir"]
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    for t in tools:
+        if shutil.which(t):
+            (bin_dir / t).symlink_to(shutil.which(t))
+    msg = tools_error(tmp_path, ACTIVEGRAIN_ASSUME_MISSING="libfftw3-dev", PATH=str(bin_dir))
+    assert "libfftw3-dev" in msg and "no apt-get" in msg
