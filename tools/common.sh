@@ -73,7 +73,8 @@ ensure_system_packages() {
   as_root env DEBIAN_FRONTEND=noninteractive apt-get update -qq >"$log" 2>&1 \
     || die "missing Debian packages: $list; 'apt-get update' failed as root (log: $log): install them yourself: apt-get install $list"
   for p in "${missing[@]}"; do
-    apt-cache policy "$p" 2>/dev/null | grep -q 'Candidate: [^(]' || unknown+=("$p")
+    # (the output is read whole: grep -q would close the pipe early, which pipefail reports)
+    [[ "$(apt-cache policy "$p" 2>/dev/null)" == *"Candidate: "[^\(]* ]] || unknown+=("$p")
   done
   [ ${#unknown[@]} -eq 0 ] \
     || die "Debian package not found by apt: ${unknown[*]} (needed: $list); these are in Debian 12's main archive: check the apt sources"
