@@ -9,9 +9,10 @@ compute does. An atom centred on a bin edge (to the dump's 12 digits: beads of t
 lattice sit exactly on some edges of the channels' 1 mm slabs) may be counted on either side, so
 its area is allowed in both bins.
 
-Measured (4Feb2025 and 4Jul2026 alike, on 1, 2 and 4 ranks): |<p>|, <p>, S differ by at most 4e-12, rod
-counts are equal (12, 13, 10, 8 rods), bins without an atom on an edge differ by at most 2e-11
-(box), 4e-12 (channels), 1e-12 (annulus); 4 slabs of each channel hold beads on an edge."""
+Measured (4Feb2025 and 4Jul2026 alike, on 1, 2 and 4 ranks): |<p>|, <p>, S differ by at most
+4e-12, rod counts are equal (12, 13, 10, 8 rods), bins without an atom on an edge differ by at
+most 2e-11 (box), 4e-12 (channels), 1e-12 (annulus); 4 slabs of each channel hold beads on an
+edge."""
 import os
 import pathlib
 import subprocess
