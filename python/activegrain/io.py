@@ -199,6 +199,43 @@ def write_dump(path, frames, append=False):
             np.savetxt(f, table, fmt=fmt)
 
 
+def to_universe(frames):
+    """The frames as an in-memory :class:`MDAnalysis.Universe`, for analyses of one's own with
+    MDAnalysis: one residue per rod (resname ``ROD``, resid its rod ID, the ``body`` or ``mol`` of
+    its atoms) and one per bead (``BEAD``, resid 0), atom ``ids``, ``types`` and ``radii``, the
+    box as ``dimensions``, one trajectory frame per frame (``u.select_atoms("resname ROD")``,
+    ``u.residues``). MDAnalysis keeps positions as float32: the measurements of this package
+    work on the frames themselves, in double precision."""
+    import warnings
+    with warnings.catch_warnings():
+        # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
+        # which override ours: import it first, here, so that the warning is not printed.
+        warnings.simplefilter("ignore", DeprecationWarning)
+        try:
+            import xdrlib  # noqa: F401
+        except ImportError:
+            pass
+        import MDAnalysis
+        from MDAnalysis.coordinates.memory import MemoryReader
+    frames = list(frames)
+    first = frames[0]
+    rod = first.rod_of_atom
+    # A residue per rod, and per bead (told apart by the negated atom ID).
+    key = np.where(rod > 0, rod, -first.ids)
+    keys, resindex = np.unique(key, return_inverse=True)
+    u = MDAnalysis.Universe.empty(len(first.ids), n_residues=len(keys), atom_resindex=resindex,
+                                  trajectory=True)
+    u.add_TopologyAttr("ids", first.ids)
+    u.add_TopologyAttr("types", first.types.astype(str))
+    u.add_TopologyAttr("radii", first.radius)
+    u.add_TopologyAttr("resids", np.maximum(keys, 0))
+    u.add_TopologyAttr("resnames", np.where(keys > 0, "ROD", "BEAD"))
+    positions = np.stack([fr.pos - fr.box.lo for fr in frames])
+    dimensions = np.array([list(fr.box.lengths) + [90.0, 90.0, 90.0] for fr in frames])
+    u.load_new(positions, format=MemoryReader, order="fac", dimensions=dimensions)
+    return u
+
+
 def write_extxyz(path, frames):
     """Write frames as extended XYZ through ase (cell, pbc, ``mol``, ``radius`` and
     velocities per atom), a format OVITO and VMD open directly."""

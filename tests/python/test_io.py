@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from activegrain import read_dump, read_frame, write_dump, geometry_from_box, Box
+from activegrain.io import to_universe
 from activegrain import synthetic as S
 from activegrain.geometry import Channel, PeriodicBox, Rectangle, Annulus
 
@@ -124,3 +125,23 @@ def test_body_column_and_full_precision(tmp_path):
     assert np.array_equal(back.body, fr.body)
     np.testing.assert_allclose(back.pos, fr.pos, rtol=1e-11, atol=1e-15)   # double precision
     assert back.rods().ids.tolist() == [77]
+
+
+def test_frames_as_an_mdanalysis_universe():
+    """Rods become residues (resid = rod ID), beads residues of their own; positions per frame."""
+    rng = np.random.default_rng(3)
+    box = S.channel_box(40, 10)
+    beads = S.lattice_beads(0, 40, 0, 10, 2.0)
+    centres, axes = S.random_rods(3, (5, 35, 3, 7), rng)
+    frames = [S.make_frame(box, beads, 0.5, centres + shift, axes, step=100 * k)
+              for k, shift in enumerate((0.0, 0.5))]
+    u = to_universe(frames)
+    rods = frames[0].rods()
+    assert u.atoms.n_atoms == len(frames[0].ids)
+    assert len(u.select_atoms("resname ROD").residues) == len(rods.ids) == 3
+    assert len(u.select_atoms("resname BEAD").residues) == int(np.sum(frames[0].is_bead))
+    assert sorted(u.select_atoms("resname ROD").residues.resids) == sorted(rods.ids)
+    assert u.trajectory.n_frames == 2
+    u.trajectory[1]
+    assert np.allclose(u.atoms.positions, frames[1].pos - frames[1].box.lo, atol=1e-4)
+    assert np.allclose(u.dimensions[:3], frames[1].box.lengths)
