@@ -2,7 +2,7 @@
 
 Runs in.single-rod (4 rods far apart per run, several seeds) and prints mean and spread of the
 speed along the rods' own axes. Long: minutes. Usage, from this folder:
-    python3 measure.py [dt|friction|restitution|drive|spheres|ranks|all] [--lmp PATH] [--seeds N]
+    python3 measure.py [dt|friction|restitution|drive|spheres|ranks|order|all] [--lmp PATH] [--seeds N]
 """
 import argparse
 import os
@@ -71,6 +71,12 @@ def main():
     if what in ("spheres", "all"):
         table("Spheres per rod (dt 1e-5)", "spheres",
               [(n, speeds(L, f"n{n}", S, spheres=n, time=T)) for n in (6, 9, 17)])
+    if what in ("order", "all"):
+        table("Contact order and sweeps (pair gran/impulse, dt 1e-5)", "solver",
+              [(label, speeds(L, f"order_{label.split()[1]}", S, time=T, **kw)) for label, kw in (
+                  ("order shuffle", {"order": "shuffle"}), ("order tag", {"order": "tag"}),
+                  ("order reverse", {"order": "reverse"}),
+                  ("sweeps 100000 tolerance 1e-10", {"sweeps": 100000, "tolerance": 1e-10}))])
     if what in ("ranks", "all"):
         table("MPI ranks (rods on sub-domain and periodic edges, dt 1e-5)", "ranks",
               [(p, speeds(L, f"np{p}", S, np_ranks=p, shift=-10e-3, time=T)) for p in (1, 2, 4)])

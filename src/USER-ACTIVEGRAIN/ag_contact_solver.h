@@ -1,8 +1,21 @@
-// Many simultaneous contacts between rigid bodies, solved by block Gauss-Seidel sweeps
-// (sequential impulses): each contact update takes back that contact's accumulated impulse and
-// re-applies the single-contact law of ag_impulse.h to the relative velocity the other contacts
-// leave it. Restitution aims at e times the pre-solve approach speed; an overlapping contact may
-// ask for a minimum separation velocity instead (whichever is larger). No LAMMPS in here.
+// Many simultaneous contacts between rigid bodies (SPEC section 4b). No LAMMPS in here.
+//
+// A contact alone on its bodies (walls aside) is one two-body impact: Stronge's law of
+// ag_impulse.h, exactly. Contacts that share a body (a rod on a plate touches it with several
+// spheres; a bead in a packing touches its neighbours) form one problem whose contact impulses
+// are not unique, while the bodies' velocities after the step are: every contact must leave with
+// a normal velocity of at least its target (e times its pre-solve approach speed, or an overlap's
+// minimum separation velocity), pushing only where it reaches it exactly, and either stick or
+// slide with Coulomb friction against its final slip. Projected Gauss-Seidel sweeps solve it:
+// each contact update takes back the contact's impulse and applies coupled_contact_impulse, a
+// projection whose result depends only on those conditions, so the fixed point does not depend
+// on the order of the sweeps. Sweeps go on until no contact update in the last sweep changed
+// its contact's velocity by more than tolerance times the island's velocity scale (a residual
+// on velocities: it vanishes when every contact meets its conditions, whichever of the many
+// impulse sets of redundant contacts was reached).
+//
+// Every solve starts from zero impulses (no warm start): the result is a function of the state
+// alone, so restarts continue a run exactly and every rank count solves the same problem.
 #pragma once
 
 #include "ag_impulse.h"
@@ -20,13 +33,17 @@ class ContactSolver {
     ContactMaterial material;
     double min_separation = 0.0;    // normal velocity the contact must at least leave with
     // Filled by solve():
-    Mat3 K;
+    Mat3 K, K_inverse;
     double target_separation = 0.0;
+    double speed = 0.0;             // pre-solve relative speed, or the target if larger
+    bool isolated = false;          // the only contact of both its (movable) bodies
     Vec3 impulse;                   // on body 2 (minus on body 1)
   };
   struct Result {
-    int sweeps = 0;              // sweeps done
-    double last_change = 0.0;    // largest impulse change of the last sweep / largest impulse
+    int sweeps = 0;            // most Gauss-Seidel sweeps an island needed (0: none coupled)
+    double residual = 0.0;     // largest velocity correction of a contact in an island's last
+                               // sweep / velocity scale
+    bool converged = true;     // every island reached the tolerance (false: one stopped at max_sweeps)
   };
 
   void clear();
@@ -38,8 +55,9 @@ class ContactSolver {
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
                        const ContactMaterial &material, double min_separation = 0.0);
 
-  // At most max_sweeps sweeps; stops early when no impulse changed by more than tolerance
-  // times the largest impulse. Updates the bodies' velocities.
+  // Isolated contacts once, then each island of coupled contacts (linked through movable
+  // bodies) by at most max_sweeps sweeps in the order the contacts were added, until its
+  // residual is at most tolerance. Updates the bodies' velocities.
   Result solve(int max_sweeps, double tolerance);
 
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
@@ -49,11 +67,21 @@ class ContactSolver {
   const Vec3 &impulse(int c) const { return contacts_[c].impulse; }
 
  private:
+  // The stages of solve().
+  void prepare();
+  void solve_isolated();
+  void find_islands();
+  double sweep(const std::vector<int> &island, double speed);    // returns the residual
+
   Vec3 relative_velocity(const Contact &c) const;
   void apply(const Contact &c, const Vec3 &J);
 
   std::vector<RigidBodyState> bodies_;
   std::vector<Contact> contacts_;
+  std::vector<int> coupled_;              // indices of the contacts that share a body
+  std::vector<std::vector<int>> islands_;    // coupled contacts linked by movable bodies, in order
+  std::vector<int> island_root_;             // per body (union-find)
+
 };
 
 }    // namespace ActiveGrain

@@ -16,6 +16,11 @@ constexpr int kMaxSubsteps = 200 * kSubsteps;
 // Slip is "constant in direction" when the post-impact slip is within this cosine tolerance of
 // the initial one.
 constexpr double kDirectionTolerance = 1.0e-9;
+// The final-slip direction of a sliding contact in a coupled solve: fixed-point iterations,
+// then (if they did not converge) a root search by sampling and bisection.
+constexpr int kDirectionFixedPointIterations = 8;
+constexpr int kDirectionSamples = 32;
+constexpr int kDirectionBisections = 40;
 
 // The tangential part of the impact for a fixed contact: tangent basis t1, t2, and what a
 // substep needs to stop the slip (K restricted to the tangent plane, inverted, and the
@@ -68,8 +73,22 @@ class TangentialStep {
 
 // Integrate the impact in impulse space with the normal impulse p as the independent variable.
 // Compression lasts while u.n < 0 and the normal impulse does work W_c < 0 then; restitution
-// ends when its work reaches e_work^2 |W_c|. An impact that starts already separating (possible
-// inside a multi-contact solve) ends when u.n reaches target_separation.
+// ends when its work reaches e_work^2 |W_c|. A target beyond the approach speed (an overlap's
+// minimum separation velocity, or a contact inside a multi-contact solve) adds a separation
+// phase that raises u.n by the excess: the result is continuous in the target and equals the
+// closed forms wherever slip keeps its direction. An impact that starts separating has only
+// that phase, up to the target.
+enum class ImpactPhase { COMPRESSION, RESTITUTION, SEPARATION };
+
+// Discretisation of the slip path must not add energy: if the impulse J of compression and
+// restitution did, scale it to the largest one that does not. (The separation phase that
+// follows adds what its target asks for: the overlap correction's energy.)
+void cap_energy(const Mat3 &K, const Vec3 &u0, Vec3 &J)
+{
+  if (impulse_energy_change(K, u0, J) <= 0.0) return;
+  J *= std::max(0.0, -2.0 * dot(J, u0) / dot(J, K * J));
+}
+
 Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, double e_work,
                       double target_separation)
 {
@@ -86,7 +105,9 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
 
   Vec3 u = u0, J;
   double work_compression = 0.0, work_restitution = 0.0;
-  bool compressing = un0 < 0.0;
+  ImpactPhase phase = un0 < 0.0 ? ImpactPhase::COMPRESSION : ImpactPhase::SEPARATION;
+  const double excess = un0 < 0.0 ? std::max(0.0, target_separation + un0) : 0.0;
+  double separation_end = target_separation;    // u.n at which the separation phase ends
   for (int step = 0; step < kMaxSubsteps; ++step) {
     bool stuck = false;
     const Vec3 dJ = n * dp + tangential.friction(u, mu, dp, stuck);
@@ -96,23 +117,30 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
     // linear in the impulse).
     double s = 1.0;
     bool phase_ends = false;
-    if (compressing) {
-      if (un + dun >= 0.0) { s = dun > 0.0 ? -un / dun : 0.0; phase_ends = true; }
-      work_compression += dp * s * (un + 0.5 * s * dun);
-    } else if (work_compression < 0.0) {
-      const double needed = e_work * e_work * -work_compression - work_restitution;
-      const double gain = dp * (un + 0.5 * dun);
-      if (gain >= needed) {
-        // Solve dp (un s + dun s^2 / 2) = needed for s in [0, 1] (the root without cancellation).
-        const double a = 0.5 * dp * dun, b = dp * un;
-        const double denominator = b + std::sqrt(std::max(0.0, b * b + 4.0 * a * needed));
-        s = denominator > 0.0 ? std::clamp(2.0 * needed / denominator, 0.0, 1.0) : 1.0;
-        phase_ends = true;
+    switch (phase) {
+      case ImpactPhase::COMPRESSION:
+        if (un + dun >= 0.0) { s = dun > 0.0 ? -un / dun : 0.0; phase_ends = true; }
+        work_compression += dp * s * (un + 0.5 * s * dun);
+        break;
+      case ImpactPhase::RESTITUTION: {
+        const double needed = e_work * e_work * -work_compression - work_restitution;
+        const double gain = dp * (un + 0.5 * dun);
+        if (gain >= needed) {
+          // Solve dp (un s + dun s^2 / 2) = needed for s in [0, 1] (the root without cancellation).
+          const double a = 0.5 * dp * dun, b = dp * un;
+          const double denominator = b + std::sqrt(std::max(0.0, b * b + 4.0 * a * needed));
+          s = denominator > 0.0 ? std::clamp(2.0 * needed / denominator, 0.0, 1.0) : 1.0;
+          phase_ends = true;
+        }
+        work_restitution += dp * s * (un + 0.5 * s * dun);
+        break;
       }
-      work_restitution += dp * s * (un + 0.5 * s * dun);
-    } else if (un + dun >= target_separation) {
-      s = dun > 0.0 ? (target_separation - un) / dun : 0.0;
-      phase_ends = true;
+      case ImpactPhase::SEPARATION:
+        if (un + dun >= separation_end) {
+          s = dun > 0.0 ? (separation_end - un) / dun : 0.0;
+          phase_ends = true;
+        }
+        break;
     }
     J += dJ * s;
     u += du * s;
@@ -120,24 +148,40 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
     // stays stuck (K is constant) and u is linear in p: one substep can then cover each
     // remaining phase, ended exactly as above.
     if (stuck && dun > 0.0 && tangential.sticking_ratio() <= mu)
-      dp = std::max(dp, 4.0 * (std::fabs(dot(u, n)) + target_separation + norm(u)) * dp / dun);
+      dp = std::max(dp, 4.0 * (std::fabs(dot(u, n)) + separation_end + norm(u)) * dp / dun);
     if (phase_ends) {
-      if (!compressing) break;
-      compressing = false;
-      if (e_work <= 0.0) break;
-    }
-  }
-
-  // Discretisation of the slip path must not add energy either: if it did, scale the impulse
-  // to the largest one that does not.
-  if (work_compression < 0.0) {
-    const double dE = impulse_energy_change(K, u0, J);
-    if (dE > 0.0) {
-      const double JKJ = dot(J, K * J);
-      J *= std::max(0.0, -2.0 * dot(J, u0) / JKJ);
+      if (phase == ImpactPhase::SEPARATION) break;
+      phase = phase == ImpactPhase::COMPRESSION && e_work > 0.0 && work_compression < 0.0
+          ? ImpactPhase::RESTITUTION : ImpactPhase::SEPARATION;
+      if (phase == ImpactPhase::SEPARATION) {
+        cap_energy(K, u0, J);
+        if (excess <= 0.0) break;
+        u = u0 + K * J;
+        separation_end = dot(u, n) + excess;
+      }
     }
   }
   return J;
+}
+
+// The sticking impulse: the contact leaves with zero slip and normal velocity target_separation.
+Vec3 stick_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, double target_separation)
+{
+  return K.inverse() * (n * target_separation - u);
+}
+
+bool inside_friction_cone(const Vec3 &J, const Vec3 &n, double mu)
+{
+  const double jn = dot(J, n);
+  return jn >= 0.0 && norm(J - n * jn) <= mu * jn;
+}
+
+// Stronge's e_work of an impact that restitution must bring to target_separation: e where the
+// slip keeps its direction (there Newton's and Stronge's coefficients agree), at most 1 (any
+// further separation is the integrated impact's last phase).
+double energetic_restitution(double un, double target_separation)
+{
+  return un < 0.0 ? std::min(1.0, target_separation / -un) : 0.0;
 }
 
 }    // namespace
@@ -163,21 +207,19 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
 
   const Vec3 ut = u - n * un;
   const double slip = norm(ut);
+  const double e_work = energetic_restitution(un, target_separation);
 
-  // Stick: the contact leaves with zero slip and normal velocity target_separation. This
-  // closed form is the impact's outcome when the contact sticks throughout (no initial slip) or
-  // when tangential and normal motion are uncoupled (K n parallel to n: spheres). Otherwise the
-  // slip stops part-way and the impact is integrated below: with coupling, the closed form can
-  // gain energy.
-  const Vec3 stick = K.inverse() * (n * target_separation - u);
-  const double stick_n = dot(stick, n);
-  if (stick_n >= 0.0 && norm(stick - n * stick_n) <= material.mu * stick_n) {
+  // Stick. This closed form is the impact's outcome when the contact sticks throughout (no
+  // initial slip) or when tangential and normal motion are uncoupled (K n parallel to n:
+  // spheres). Otherwise the slip stops part-way and the impact is integrated below: with
+  // coupling, the closed form can gain energy.
+  const Vec3 stick = stick_impulse(K, u, n, target_separation);
+  if (inside_friction_cone(stick, n, material.mu)) {
     const Vec3 Kn = K * n;
     const double coupling = norm(Kn - n * dot(Kn, n)) / dot(Kn, n);
     const double scale = std::max(std::fabs(un), target_separation);
     if (slip <= kDirectionTolerance * scale || coupling <= kDirectionTolerance) return stick;
-    return integrate_impact(K, u, n, material.mu,
-                            un < 0.0 ? std::min(1.0, target_separation / -un) : 0.0, target_separation);
+    return integrate_impact(K, u, n, material.mu, e_work, target_separation);
   }
 
   // Slide along the initial slip direction t: J = j_n (n - mu t). Valid while the slip keeps
@@ -195,8 +237,77 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
   }
 
   // Slip stops, reverses or turns during the impact.
-  return integrate_impact(K, u, n, material.mu,
-                          un < 0.0 ? std::min(1.0, target_separation / -un) : 0.0, target_separation);
+  return integrate_impact(K, u, n, material.mu, e_work, target_separation);
+}
+
+Vec3 coupled_contact_impulse(const Mat3 &K, const Mat3 &K_inverse, const Vec3 &u, const Vec3 &n,
+                             const ContactMaterial &material, double target_separation)
+{
+  const double un = dot(u, n);
+  if (un >= target_separation) return {};
+  const Vec3 stick = K_inverse * (n * target_separation - u);
+  if (inside_friction_cone(stick, n, material.mu)) return stick;
+
+  // Slide against the final slip s: J = j_n (n - mu s), j_n from the normal target, s the
+  // direction of the tangential part of u + K J. For a slip direction s, the impulse and the
+  // final slip (negative j_n: friction would pull the contact in, Painleve; not a solution):
+  auto slide = [&](const Vec3 &s, Vec3 &J, Vec3 &slip_after) {
+    const Vec3 direction = n - s * material.mu;
+    const double k_dir = dot(n, K * direction);
+    if (k_dir <= 0.0) return false;
+    J = direction * ((target_separation - un) / k_dir);
+    const Vec3 u_after = u + K * J;
+    slip_after = u_after - n * dot(u_after, n);
+    return true;
+  };
+  // Fixed-point iteration on s from the direction the sticking impulse opposes: it contracts
+  // by about mu times the tangential-normal coupling of K per iteration (one step for spheres).
+  const double stick_n = dot(stick, n);
+  Vec3 s = -(stick - n * stick_n);
+  s = s / norm(s);
+  const Vec3 s_start = s;
+  Vec3 J, slip_after;
+  for (int iteration = 0; iteration < kDirectionFixedPointIterations; ++iteration) {
+    if (!slide(s, J, slip_after) || norm(slip_after) == 0.0) break;
+    const Vec3 next = slip_after / norm(slip_after);
+    if (norm(next - s) <= kDirectionTolerance) return J;
+    s = next;
+  }
+  // Otherwise the root of the angle between s and the final slip, on a circle of directions
+  // around n: bracketed by sampling, refined by bisection; the root nearest the start (none
+  // found: the last iterate, friction mu j_n close to against the final slip).
+  const Vec3 t1 = s_start, t2 = cross(n, t1);
+  auto misfit = [&](double angle, bool &valid) {
+    const Vec3 dir = t1 * std::cos(angle) + t2 * std::sin(angle);
+    Vec3 J_angle, slip;
+    valid = slide(dir, J_angle, slip) && dot(slip, dir) > 0.0;
+    return dot(cross(dir, slip), n);
+  };
+  const double step = 2.0 * M_PI / kDirectionSamples;
+  double best_angle = 0.0, best_distance = 1e300;
+  bool found = false, valid_previous = false;
+  double previous = misfit(-M_PI, valid_previous);
+  for (int k = 1; k <= kDirectionSamples; ++k) {
+    double lo = -M_PI + (k - 1) * step, hi = lo + step;
+    bool valid_next = false;
+    const double next = misfit(hi, valid_next);
+    if (valid_previous && valid_next && (previous <= 0.0) != (next <= 0.0)) {
+      double f_lo = previous;
+      for (int b = 0; b < kDirectionBisections; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        bool valid_mid = false;
+        const double f_mid = misfit(mid, valid_mid);
+        if ((f_lo <= 0.0) == (f_mid <= 0.0)) { lo = mid; f_lo = f_mid; } else { hi = mid; }
+      }
+      const double root = 0.5 * (lo + hi);
+      if (std::fabs(root) < best_distance) { best_distance = std::fabs(root); best_angle = root; found = true; }
+    }
+    previous = next;
+    valid_previous = valid_next;
+  }
+  if (found) slide(t1 * std::cos(best_angle) + t2 * std::sin(best_angle), J, slip_after);
+  else if (!slide(s, J, slip_after)) J = n * ((target_separation - un) / dot(n, K * n));    // Painleve
+  return J;
 }
 
 Vec3 collision_impulse(const RigidBodyState &body1, const RigidBodyState &body2, const Vec3 &point,

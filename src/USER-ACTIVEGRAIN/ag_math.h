@@ -13,6 +13,7 @@ struct Vec3 {
   explicit Vec3(const double *a) : x(a[0]), y(a[1]), z(a[2]) {}
 
   void store(double *a) const { a[0] = x; a[1] = y; a[2] = z; }
+  void add_to(double *a) const { a[0] += x; a[1] += y; a[2] += z; }
 
   Vec3 operator+(const Vec3 &b) const { return {x + b.x, y + b.y, z + b.z}; }
   Vec3 operator-(const Vec3 &b) const { return {x - b.x, y - b.y, z - b.z}; }
@@ -115,6 +116,7 @@ struct Mat3 {
       for (int j = 0; j < 3; ++j) r.m[i][j] = m[j][i];
     return r;
   }
+  double trace() const { return m[0][0] + m[1][1] + m[2][2]; }
   double determinant() const
   {
     return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -

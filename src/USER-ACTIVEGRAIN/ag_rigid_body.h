@@ -30,12 +30,17 @@ struct RigidBodyState {
     return s;
   }
 
-  Vec3 velocity_at(const Vec3 &p) const { return v + cross(omega, p - com); }
-  // Apply impulse J at point p.
-  void apply_impulse(const Vec3 &J, const Vec3 &p)
+  bool is_static() const { return inv_mass == 0.0; }
+
+  Vec3 velocity_at(const Vec3 &p) const { return velocity_at_arm(p - com); }
+  // Velocity of the body point at lever arm r from the centre of mass.
+  Vec3 velocity_at_arm(const Vec3 &r) const { return v + cross(omega, r); }
+  // Apply impulse J at point p, or at lever arm r from the centre of mass.
+  void apply_impulse(const Vec3 &J, const Vec3 &p) { apply_impulse_at_arm(J, p - com); }
+  void apply_impulse_at_arm(const Vec3 &J, const Vec3 &r)
   {
     v += J * inv_mass;
-    omega += inv_inertia * cross(p - com, J);
+    omega += inv_inertia * cross(r, J);
   }
 };
 

@@ -34,8 +34,8 @@ static constexpr double MAX_STEP_TRAVEL = 0.01;
 /* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
        [vibrate A F PHASE] [type T E MU] */
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
-    lid(Lid::NONE), materials(lmp, STYLE), delivered{{0, 0, 0}, {0, 0, 0}}
+    Fix(lmp, narg, arg), ImpulseWall(NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
+    lid(Lid::NONE), materials(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
     error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);
@@ -82,7 +82,7 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
 
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = 9;
+  size_vector = NUM_STATE + num_surface_outputs();
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -132,7 +132,7 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   const double zb = base_z(t), vb = base_vz(t);
   const double zlid = lid == Lid::MOVING ? zb + gap : z0 + gap;
   const double vlid = lid == Lid::MOVING ? vb : 0.0;
-  memset(delivered, 0, sizeof(delivered));
+  clear_delivered();
 
   double **x = atom->x;
   double *radius = atom->radius;
@@ -154,29 +154,21 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   }
 }
 
-void FixWallImpulse::add_delivered_impulse(int surface, const Vec3 &J)
-{
-  delivered[surface][0] += J.x;
-  delivered[surface][1] += J.y;
-  delivered[surface][2] += J.z;
-}
-
 // Base plate position at the current step.
 double FixWallImpulse::compute_scalar()
 {
   return base_z(time_now());
 }
 
-// 1 base z, 2 lid z (base z without a lid), 3 plate velocity, 4-6 impulse on atoms from the
-// base, 7-9 from the lid, in the last force computation.
+// The fix's state (State), then the impulse on atoms from the base and from the lid in the
+// last force computation (ImpulseWall::SurfaceQuantity).
 double FixWallImpulse::compute_vector(int n)
 {
   const double t = time_now();
-  if (n == 0) return base_z(t);
-  if (n == 1) return lid == Lid::MOVING ? base_z(t) + gap : lid == Lid::FIXED ? z0 + gap : base_z(t);
-  if (n == 2) return base_vz(t);
-  double mine[6], all[6];
-  memcpy(mine, delivered, sizeof(mine));
-  MPI_Allreduce(mine, all, 6, MPI_DOUBLE, MPI_SUM, world);
-  return all[n - 3];
+  switch (n) {
+    case BASE_Z: return base_z(t);
+    case LID_Z: return lid == Lid::MOVING ? base_z(t) + gap : lid == Lid::FIXED ? z0 + gap : base_z(t);
+    case PLATE_VZ: return base_vz(t);
+    default: return surface_output(world, n - NUM_STATE);
+  }
 }

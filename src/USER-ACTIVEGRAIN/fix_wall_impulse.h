@@ -25,10 +25,11 @@ class FixWallImpulse : public Fix, public ImpulseWall {
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
                           std::vector<Contact> &contacts) override;
-  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) override;
 
  private:
-  enum { BASE = 0, LID = 1 };
+  enum Surface { BASE = 0, LID, NUM_SURFACES };
+  // The fix's own state at the head of its global vector (ImpulseWall: the layout).
+  enum State { BASE_Z = 0, LID_Z, PLATE_VZ, NUM_STATE };
   enum class Lid { NONE, MOVING, FIXED };
 
   double time_now() const;
@@ -38,7 +39,6 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   double z0, gap, amplitude, frequency, phase;
   Lid lid;
   WallMaterials materials;
-  double delivered[2][3];    // this rank's impulse through base and lid, last force computation
 };
 
 }    // namespace LAMMPS_NS

@@ -22,7 +22,7 @@ static const char *const STYLE = "Fix wall/impulse/region";
 
 /* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
 FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), materials(lmp, STYLE), delivered{0, 0, 0}
+    Fix(lmp, narg, arg), ImpulseWall(1), region(nullptr), materials(lmp, STYLE)
 {
   if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
   region_id = arg[3];
@@ -37,7 +37,7 @@ FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
   materials.check_complete();
 
   vector_flag = 1;
-  size_vector = 3;
+  size_vector = num_surface_outputs();
   global_freq = 1;
   extvector = 0;
 }
@@ -58,7 +58,7 @@ void FixWallImpulseRegion::init()
 void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<char> &atoms,
                                               std::vector<Contact> &contacts)
 {
-  memset(delivered, 0, sizeof(delivered));
+  clear_delivered();
   const bool moving = region->dynamic_check();
   region->prematch();
   if (moving) region->set_velocity();
@@ -89,17 +89,9 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
   }
 }
 
-void FixWallImpulseRegion::add_delivered_impulse(int, const Vec3 &J)
-{
-  delivered[0] += J.x;
-  delivered[1] += J.y;
-  delivered[2] += J.z;
-}
-
-// Impulse on atoms from the region's surface in the last force computation (x, y, z).
+// Impulse on atoms from the region's surface in the last force computation (x, y, z): the
+// per-surface blocks of ImpulseWall's layout, for its one surface.
 double FixWallImpulseRegion::compute_vector(int n)
 {
-  double all[3];
-  MPI_Allreduce(delivered, all, 3, MPI_DOUBLE, MPI_SUM, world);
-  return all[n];
+  return surface_output(world, n);
 }

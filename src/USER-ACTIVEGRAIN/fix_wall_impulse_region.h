@@ -26,13 +26,11 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
                           std::vector<Contact> &contacts) override;
-  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) override;
 
  private:
   std::string region_id;
   class Region *region;
   WallMaterials materials;
-  double delivered[3];    // this rank's impulse on atoms, last force computation
 };
 
 }    // namespace LAMMPS_NS

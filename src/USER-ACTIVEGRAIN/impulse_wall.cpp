@@ -8,6 +8,28 @@
 
 using namespace LAMMPS_NS;
 
+int ImpulseWall::num_surface_outputs() const
+{
+  int n = 0;
+  for (int q = 0; q < NUM_SURFACE_QUANTITIES; ++q) n += COMPONENTS[q] * static_cast<int>(delivered_.size());
+  return n;
+}
+
+double ImpulseWall::surface_output(MPI_Comm world, int k) const
+{
+  const int nsurfaces = static_cast<int>(delivered_.size());
+  int quantity = 0;
+  while (k >= COMPONENTS[quantity] * nsurfaces) k -= COMPONENTS[quantity++] * nsurfaces;
+  const int surface = k / COMPONENTS[quantity], component = k % COMPONENTS[quantity];
+  double mine = 0.0, all = 0.0;
+  switch (static_cast<SurfaceQuantity>(quantity)) {
+    case IMPULSE: mine = (&delivered_[surface].x)[component]; break;
+    case NUM_SURFACE_QUANTITIES: break;
+  }
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
 void LAMMPS_NS::check_wall_host(LAMMPS *lmp, const std::string &style)
 {
   if (!lmp->force->pair_match("^gran/impulse", 0))

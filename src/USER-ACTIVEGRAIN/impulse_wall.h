@@ -7,6 +7,8 @@
 #include "ag_impulse.h"
 #include "pointers.h"
 
+#include <algorithm>
+#include <mpi.h>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,27 @@ class ImpulseWall {
   virtual void find_wall_contacts(double reach, const std::vector<char> &atoms,
                                   std::vector<Contact> &contacts) = 0;
   // The impulse delivered to atoms through a surface in this force computation.
-  virtual void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) = 0;
+  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) { delivered_[surface] += J; }
+
+  // Global outputs of the wall fixes (compute_vector), one layout for both: first the fix's own
+  // state (fix wall/impulse: base z, lid z, plate velocity; fix wall/impulse/region: none), then
+  // one block per SurfaceQuantity: for every surface in the fix's order (wall/impulse: base,
+  // lid), the quantity's components (impulse: x, y, z, in the last force computation). A
+  // quantity added later (energy input, dissipation) goes after the last one: the indices of
+  // the existing ones never change.
+  enum SurfaceQuantity { IMPULSE = 0, NUM_SURFACE_QUANTITIES };
+  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3};
+
+ protected:
+  explicit ImpulseWall(int nsurfaces) : delivered_(nsurfaces) {}
+  int num_surface_outputs() const;
+  // Start a force computation's tally.
+  void clear_delivered() { std::fill(delivered_.begin(), delivered_.end(), ActiveGrain::Vec3()); }
+  // Output k of the per-surface blocks (k counts from the first block), summed over ranks.
+  double surface_output(MPI_Comm world, int k) const;
+
+ private:
+  std::vector<ActiveGrain::Vec3> delivered_;    // this rank's impulse per surface, last force computation
 };
 
 // Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then

@@ -8,8 +8,6 @@
 #include "modify.h"
 #include "rigid_body_provider.h"
 
-#include <algorithm>
-#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using ActiveGrain::Vec3;
@@ -69,25 +67,26 @@ void LocalRods::update(int groupbit)
     members[found->second].push_back(j);
   }
 
+  LowestTagRule counting;
+  for (std::size_t r = 0; r < rods_.size(); ++r)
+    for (int j : members[r]) counting.add(rods_[r].id, tag[j]);
+  // The image used above may be a ghost of an atom this rank owns: atom->map() gives the owned copy.
+  auto owned = [&](tagint id) {
+    const int i = atom->map(id);
+    return (i >= 0 && i < nlocal) ? i : -1;
+  };
   for (std::size_t r = 0; r < rods_.size(); ++r) {
     auto &atoms = members[r];
     std::vector<Vec3> centres;
     std::vector<double> radii;
-    tagint lowest = tag[atoms.front()];
     for (int j : atoms) {
       centres.emplace_back(x[j]);
       radii.push_back(radius[j]);
-      lowest = std::min(lowest, tag[j]);
     }
     const auto chain = ActiveGrain::project_rod_chain(centres, radii);
-    // The image used above may be a ghost of an atom this rank owns: atom->map() gives the owned copy.
-    auto owned = [&](tagint id) {
-      const int i = atom->map(id);
-      return (i >= 0 && i < nlocal) ? i : -1;
-    };
     rods_[r].axis = chain.axis;
     rods_[r].polar = chain.polar;
-    rods_[r].counted_here = owned(lowest) >= 0;
+    rods_[r].counted_here = counting.deciding_atom(atom, rods_[r].id) >= 0;
     rods_[r].area = 0.0;
     for (std::size_t k = 0; k < atoms.size(); ++k) {
       rods_[r].area += chain.shares[k];

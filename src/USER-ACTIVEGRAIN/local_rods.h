@@ -5,13 +5,38 @@
 
 #include "ag_projected_area.h"
 #include "ag_rigid_body.h"
+#include "atom.h"
 #include "pointers.h"
 
+#include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
 
 class RigidBodyProvider;
+
+// Each rigid body is counted (rod computes) and solved (pair gran/impulse) on exactly one rank:
+// the one that owns its lowest-tag atom. A rank that owns an atom of a body sees all of the body
+// as owned or ghost atoms (ghost cutoff), so every such rank finds the same lowest tag.
+class LowestTagRule {
+ public:
+  void clear() { lowest_.clear(); }
+  // An atom (any copy, owned or ghost) of body body_id.
+  void add(tagint body_id, tagint atom_tag)
+  {
+    auto found = lowest_.emplace(body_id, atom_tag);
+    if (!found.second && atom_tag < found.first->second) found.first->second = atom_tag;
+  }
+  // The owned copy of the body's lowest-tag atom, or -1 where another rank decides the body.
+  int deciding_atom(Atom *atom, tagint body_id) const
+  {
+    const int i = atom->map(lowest_.at(body_id));    // map() prefers the owned copy
+    return (i >= 0 && i < atom->nlocal) ? i : -1;
+  }
+
+ private:
+  std::unordered_map<tagint, tagint> lowest_;
+};
 
 class LocalRods : protected Pointers {
  public:

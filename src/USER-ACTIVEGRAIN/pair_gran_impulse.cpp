@@ -15,6 +15,7 @@
 #include "fix.h"
 #include "fix_store_atom.h"
 #include "force.h"
+#include "local_rods.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
@@ -34,7 +35,14 @@ using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
-static constexpr int PENDING_STEP = 6;    // column of the pending store holding its step
+// Defaults: sweeps stop at the tolerance; the cap only guards against a solve that does not
+// converge. A rod landing flat on a plate (nine redundant contacts) can need thousands of
+// sweeps to 1e-8, and looser tolerances or caps leave a visible dependence on the contact
+// order (docs/pair_gran_impulse.rst).
+static constexpr int DEFAULT_MAX_SWEEPS = 10000;
+static constexpr double DEFAULT_TOLERANCE = 1.0e-8;
+static constexpr double DEFAULT_BETA = 0.2;
+static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 
 // splitmix64's finalizer: a well-mixed 64-bit hash, for the contacts' solve order.
 static std::uint64_t mix(std::uint64_t z)
@@ -46,9 +54,10 @@ static std::uint64_t mix(std::uint64_t z)
 }
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), max_sweeps(8), tolerance(1.0e-4), beta(0.2), restitution(nullptr), friction(nullptr),
-    maxrad(nullptr), pending(nullptr), ghost_pairs(false), nmax(0), fcontact(nullptr), tcontact(nullptr),
-    stats{0, 0, 0, 0}
+    Pair(lmp), max_sweeps(DEFAULT_MAX_SWEEPS), tolerance(DEFAULT_TOLERANCE), beta(DEFAULT_BETA),
+    order(Order::SHUFFLE), restitution(nullptr), friction(nullptr), maxrad(nullptr), pending(nullptr),
+    ghost_pairs(false), nmax(0), fcontact(nullptr), tcontact(nullptr), largest_overlap(0.0),
+    capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
   restartinfo = 1;
@@ -57,6 +66,8 @@ PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
   // Contact forces reach owners through this style's own reverse communication, so the f.r
   // virial over owned and ghost atoms would be wrong: no virial from this style.
   no_virial_fdotr_compute = 1;
+  nextra = NUM_OUTPUTS;
+  pvector = new double[NUM_OUTPUTS]();
 }
 
 PairGranImpulse::~PairGranImpulse()
@@ -71,6 +82,7 @@ PairGranImpulse::~PairGranImpulse()
   }
   memory->destroy(fcontact);
   memory->destroy(tcontact);
+  delete[] pvector;
 }
 
 void PairGranImpulse::allocate()
@@ -86,7 +98,7 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [sweeps N] [tolerance T] [beta B] */
+/* pair_style gran/impulse [sweeps N] [tolerance T] [beta B] [order shuffle|tag|reverse] */
 void PairGranImpulse::settings(int narg, char **arg)
 {
   int iarg = 0;
@@ -102,6 +114,12 @@ void PairGranImpulse::settings(int narg, char **arg)
     } else if (key == "beta") {
       beta = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (beta < 0.0 || beta > 1.0) error->all(FLERR, "{}: beta must be in [0, 1]", STYLE);
+    } else if (key == "order") {
+      const std::string value = arg[iarg + 1];
+      if (value == "shuffle") order = Order::SHUFFLE;
+      else if (value == "tag") order = Order::TAG;
+      else if (value == "reverse") order = Order::REVERSE;
+      else error->all(FLERR, "{}: order must be shuffle, tag or reverse (found {})", STYLE, value);
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
@@ -142,7 +160,7 @@ void PairGranImpulse::init_style()
   pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
     pending = dynamic_cast<FixStoreAtom *>(
-        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, PENDING_STEP + 1)));
+        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, static_cast<int>(NUM_PENDING))));
 
   providers.clear();
   walls.clear();
@@ -205,10 +223,8 @@ void PairGranImpulse::grow_buffers()
 }
 
 // Rigid body IDs of all atoms, and which atoms' contacts this rank solves: owned beads, and the
-// atoms of bodies whose lowest visible tag is owned here, one copy each: the owned one, else
-// the ghost image nearest that lowest-tag atom. A rank that owns an atom of a body sees all of
-// it (check_ghost_cutoff), so it finds the same lowest tag as every other such rank: exactly
-// one rank solves each body.
+// atoms of bodies this rank decides (LowestTagRule), one copy each: the owned one, else the
+// ghost image nearest the body's lowest-tag atom.
 void PairGranImpulse::assign_contact_ranks()
 {
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
@@ -218,20 +234,19 @@ void PairGranImpulse::assign_contact_ranks()
   std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
   if (!ghost_pairs) return;
 
-  std::unordered_map<tagint, tagint> lowest_tag;
+  LowestTagRule solving;
   RigidBodyState state;
   for (int i = 0; i < nall; i++)
     for (RigidBodyProvider *provider : providers)
       if (provider->body_of_atom(i, state, rigid_body_id[i])) {
-        auto found = lowest_tag.emplace(rigid_body_id[i], tag[i]);
-        if (!found.second) found.first->second = std::min(found.first->second, tag[i]);
+        solving.add(rigid_body_id[i], tag[i]);
         break;
       }
   for (int i = 0; i < nall; i++) {
     if (!rigid_body_id[i]) continue;
-    const int solver_atom = atom->map(lowest_tag[rigid_body_id[i]]);    // the owned copy if any
+    const int solver_atom = solving.deciding_atom(atom, rigid_body_id[i]);
     solved_here[i] = 0;
-    if (solver_atom < 0 || solver_atom >= nlocal) continue;
+    if (solver_atom < 0) continue;
     const int owned = atom->map(tag[i]);    // map() prefers the owned copy
     solved_here[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
   }
@@ -322,34 +337,40 @@ Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
   return point - Vec3(com_image);
 }
 
-void PairGranImpulse::add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall,
-                                  int surface, const Vec3 &point, const Vec3 &n, double gap,
-                                  const ContactMaterial &material, const Vec3 &r1, const Vec3 &r2)
+void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms, const Vec3 &n,
+                                  double gap, const ContactMaterial &material, const Vec3 &r1,
+                                  const Vec3 &r2)
 {
   const double dt = update->dt;
   // Predictive contact: in contact if the gap closes within this step at the current normal
   // velocity, or already overlaps; an overlap must at least open at beta * overlap / dt.
-  const RigidBodyState &b1 = solver.body(body1), &b2 = solver.body(body2);
-  const Vec3 u = (b2.v + cross(b2.omega, r2)) - (b1.v + cross(b1.omega, r1));
+  const Vec3 u = solver.body(body2).velocity_at_arm(r2) - solver.body(body1).velocity_at_arm(r1);
   if (gap + dot(u, n) * dt >= 0.0) return;
   const double min_separation = gap < 0.0 ? beta * -gap / dt : 0.0;
   tagint *tag = atom->tag;
-  const int wall_index = wall ? static_cast<int>(std::find(walls.begin(), walls.end(), wall) - walls.begin()) : -1;
-  const tagint tag1 = atom1 >= 0 ? tag[atom1] : 0, tag2 = tag[atom2];
-  const tagint low = std::min(tag1, tag2), high = std::max(tag1, tag2);
+  const int wall_index =
+      atoms.wall ? static_cast<int>(std::find(walls.begin(), walls.end(), atoms.wall) - walls.begin()) : -1;
+  const tagint tag1 = atoms.atom1 >= 0 ? tag[atoms.atom1] : 0, tag2 = tag[atoms.atom2];
+  const ContactIdentity identity(wall_index, atoms.surface, std::min(tag1, tag2), std::max(tag1, tag2));
   std::uint64_t shuffle = mix(static_cast<std::uint64_t>(update->ntimestep));
-  for (const std::uint64_t part : {static_cast<std::uint64_t>(wall_index + 1), static_cast<std::uint64_t>(surface),
-                                   static_cast<std::uint64_t>(low), static_cast<std::uint64_t>(high)})
+  for (const std::uint64_t part :
+       {static_cast<std::uint64_t>(wall_index + 1), static_cast<std::uint64_t>(atoms.surface),
+        static_cast<std::uint64_t>(std::get<2>(identity)), static_cast<std::uint64_t>(std::get<3>(identity))})
     shuffle = mix(shuffle ^ part);
-  found.push_back({std::make_tuple(shuffle, wall_index, surface, low, high), body1, body2, r1, r2, n,
-                   material, min_separation, {atom1, atom2, wall, surface, point}});
-  stats[2] = std::max(stats[2], -gap);
+  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, atoms});
+  largest_overlap = std::max(largest_overlap, -gap);
 }
 
 void PairGranImpulse::add_found_contacts()
 {
-  std::sort(found.begin(), found.end(),
-            [](const FoundContact &a, const FoundContact &b) { return a.key < b.key; });
+  auto shuffled = [](const FoundContact &a, const FoundContact &b) {
+    return std::tie(a.shuffle, a.identity) < std::tie(b.shuffle, b.identity);
+  };
+  auto ascending = [](const FoundContact &a, const FoundContact &b) { return a.identity < b.identity; };
+  auto descending = [](const FoundContact &a, const FoundContact &b) { return b.identity < a.identity; };
+  if (order == Order::SHUFFLE) std::sort(found.begin(), found.end(), shuffled);
+  else if (order == Order::TAG) std::sort(found.begin(), found.end(), ascending);
+  else std::sort(found.begin(), found.end(), descending);
   for (const FoundContact &c : found) {
     solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation);
     atom_contacts.push_back(c.atoms);
@@ -396,7 +417,7 @@ void PairGranImpulse::gather_pair_contacts()
       const int bi = body_of_atom(i), bj = body_of_atom(j);
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
       const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
-      add_contact(bi, bj, i, j, nullptr, 0, point, n, gap, material, lever_arm(i, bi, point),
+      add_contact(bi, bj, {i, j, nullptr, 0, point}, n, gap, material, lever_arm(i, bi, point),
                   lever_arm(j, bj, point));
     }
   }
@@ -412,7 +433,7 @@ void PairGranImpulse::gather_wall_contacts()
       if (c.gap > 0.0 && c.gap >= closing_speed_bound(c.atom, -1, c.wall_velocity) * update->dt) continue;
       const int b = body_of_atom(c.atom);
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
-      add_contact(w, b, -1, c.atom, wall, c.surface, c.point, c.normal, c.gap, c.material, Vec3(),
+      add_contact(w, b, {-1, c.atom, wall, c.surface, c.point}, c.normal, c.gap, c.material, Vec3(),
                   lever_arm(c.atom, b, c.point));
     }
   }
@@ -424,10 +445,8 @@ void PairGranImpulse::distribute_impulses()
   double **x = atom->x;
   auto push = [&](int i, const Vec3 &F, const Vec3 &point) {
     const Vec3 torque = cross(point - Vec3(x[i]), F);
-    for (int k = 0; k < 3; k++) {
-      fcontact[i][k] += (&F.x)[k];
-      tcontact[i][k] += (&torque.x)[k];
-    }
+    F.add_to(fcontact[i]);
+    torque.add_to(tcontact[i]);
   };
   for (int c = 0; c < solver.num_contacts(); c++) {
     const AtomContact &ac = atom_contacts[c];
@@ -451,10 +470,53 @@ void PairGranImpulse::apply_contact_forces(bool store)
     }
     if (!store) continue;
     for (int k = 0; k < 3; k++) {
-      saved[i][k] = fcontact[i][k];
-      saved[i][3 + k] = tcontact[i][k];
+      saved[i][PENDING_FORCE + k] = fcontact[i][k];
+      saved[i][PENDING_TORQUE + k] = tcontact[i][k];
     }
     saved[i][PENDING_STEP] = step;
+  }
+}
+
+// The contact forces of the step this run continues from (if any): their half due in its
+// initial_integrate.
+void PairGranImpulse::restore_pending_forces()
+{
+  double **saved = pending->astore;
+  const double step = (double) update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (saved[i][PENDING_STEP] == step)
+      for (int k = 0; k < 3; k++) {
+        fcontact[i][k] = saved[i][PENDING_FORCE + k];
+        tcontact[i][k] = saved[i][PENDING_TORQUE + k];
+      }
+}
+
+// Solver health into pvector (see Output), and a warning when the sweep cap keeps stopping the
+// solve before the tolerance.
+void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &result)
+{
+  enum Reduced { R_SWEEPS, R_RESIDUAL, R_OVERLAP, R_CAPPED, NUM_REDUCED };
+  double mine[NUM_REDUCED] = {(double) result.sweeps, result.residual, largest_overlap,
+                              result.converged ? 0.0 : 1.0};
+  double all[NUM_REDUCED];
+  if (comm->nprocs > 1) MPI_Allreduce(mine, all, NUM_REDUCED, MPI_DOUBLE, MPI_MAX, world);
+  else std::copy(mine, mine + NUM_REDUCED, all);
+  if (all[R_CAPPED] > 0.0) capped_steps++;
+
+  // Maxima go to rank 0 only: compute pair sums pvector over ranks.
+  const double here = comm->me == 0 ? 1.0 : 0.0;
+  pvector[CONTACTS] = solver.num_contacts();
+  pvector[SWEEPS] = here * all[R_SWEEPS];
+  pvector[RESIDUAL] = here * all[R_RESIDUAL];
+  pvector[LARGEST_OVERLAP] = here * all[R_OVERLAP];
+  pvector[CAPPED_STEPS] = here * (double) capped_steps;
+
+  if (capped_steps == next_cap_warning) {
+    if (comm->me == 0)
+      error->warning(FLERR, "{}: the contact solve stopped at the sweep cap ({} sweeps) in {} steps of "
+                     "this run, residual {:.3g} > tolerance {:.3g}: raise sweeps", STYLE, max_sweeps,
+                     capped_steps, all[R_RESIDUAL], tolerance);
+    next_cap_warning *= 10;
   }
 }
 
@@ -466,16 +528,12 @@ void PairGranImpulse::compute(int eflag, int vflag)
   if (update->setupflag) {
     // Contacts are solved in the steps. At setup only the force of the step this run
     // continues from (if any) comes back, so that its initial_integrate completes the impulse.
-    double **saved = pending->astore;
-    const double step = (double) update->ntimestep;
-    for (int i = 0; i < atom->nlocal; i++)
-      if (saved[i][PENDING_STEP] == step)
-        for (int k = 0; k < 3; k++) {
-          fcontact[i][k] = saved[i][k];
-          tcontact[i][k] = saved[i][3 + k];
-        }
+    restore_pending_forces();
     apply_contact_forces(false);
-    stats[2] = 0.0;
+    largest_overlap = 0.0;
+    capped_steps = 0;
+    next_cap_warning = FIRST_CAP_WARNING;
+    std::fill(pvector, pvector + NUM_OUTPUTS, 0.0);
     if (ghost_pairs) {
       assign_contact_ranks();
       check_ghost_cutoff();
@@ -491,10 +549,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
   gather_pair_contacts();
   gather_wall_contacts();
   add_found_contacts();
-  const ActiveGrain::ContactSolver::Result result = solver.solve(max_sweeps, tolerance);
-  stats[0] = solver.num_contacts();
-  stats[1] = result.sweeps;
-  stats[3] = result.last_change;
+  record_solve(solver.solve(max_sweeps, tolerance));
   distribute_impulses();
   comm->reverse_comm(this);
   apply_contact_forces(true);
@@ -558,29 +613,31 @@ void PairGranImpulse::read_restart(FILE *fp)
 
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
+  const int order_code = static_cast<int>(order);
   fwrite(&max_sweeps, sizeof(int), 1, fp);
   fwrite(&tolerance, sizeof(double), 1, fp);
   fwrite(&beta, sizeof(double), 1, fp);
+  fwrite(&order_code, sizeof(int), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
 {
+  int order_code = 0;
   if (comm->me == 0) {
     utils::sfread(FLERR, &max_sweeps, sizeof(int), 1, fp, nullptr, error);
     utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&max_sweeps, 1, MPI_INT, 0, world);
   MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
+  order = static_cast<Order>(order_code);
 }
 
-// "contact_stats": this rank's last solve (contacts, sweeps, relative impulse change of the
-// last sweep) and the largest overlap of a contact since the run's setup.
 void *PairGranImpulse::extract(const char *name, int &dim)
 {
-  dim = 1;
-  if (strcmp(name, "contact_stats") == 0) return (void *) stats;
   dim = 2;
   if (strcmp(name, "e") == 0) return (void *) restitution;
   if (strcmp(name, "mu") == 0) return (void *) friction;

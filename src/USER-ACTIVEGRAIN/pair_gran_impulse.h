@@ -42,6 +42,21 @@ class PairGranImpulse : public Pair {
   void *extract(const char *, int &) override;
   double memory_usage() override;
 
+ // Global outputs, pvector (compute pair gran/impulse, which sums them over ranks: a maximum is
+  // held by rank 0, the other ranks hold 0). New outputs (e.g. energy input and dissipation) are
+  // appended before NUM_OUTPUTS; existing indices never change.
+  enum Output {
+    CONTACTS = 0,       // contacts solved in the last step, all ranks
+    SWEEPS,             // most Gauss-Seidel sweeps a rank needed in the last step
+    RESIDUAL,           // largest final residual (relative body velocity change) of the last step
+    LARGEST_OVERLAP,    // largest overlap of a contact since the run's setup (length)
+    CAPPED_STEPS,       // steps since the run's setup in which a solve stopped at the sweep cap
+    NUM_OUTPUTS
+  };
+  // Order in which contacts are visited: a hash of the step and the contact's identity (default),
+  // or their identity (wall, surface, atom tags) ascending or descending.
+  enum class Order { SHUFFLE, TAG, REVERSE };
+
  private:
   // One contact as LAMMPS sees it: which atoms get the impulse and where.
   struct AtomContact {
@@ -51,20 +66,22 @@ class PairGranImpulse : public Pair {
     int surface;
     ActiveGrain::Vec3 point;
   };
-  // A contact found this step, before it goes to the solver. Contacts are solved in the order
-  // of their key, not in the order ranks find them, so that a body solved on one rank sees the
-  // same Gauss-Seidel order on any number of ranks: a hash of the step and the contact's
-  // identity (wall index or -1, surface, atom tags), then that identity. The order is thus
-  // shuffled anew each step: with the default sweeps a fixed order (tail to nose, or nose to
-  // tail) biases the walking speed of rods by about 10%.
+  // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
+  using ContactIdentity = std::tuple<int, int, tagint, tagint>;
+  // A contact found this step, before it goes to the solver. Contacts are solved in an order
+  // given by their identity (and, shuffled, the step), not by the order ranks find them, so that
+  // a body solved on one rank sees the same order on any number of ranks.
   struct FoundContact {
-    std::tuple<std::uint64_t, int, int, tagint, tagint> key;
+    std::uint64_t shuffle;
+    ContactIdentity identity;
     int body1, body2;
     ActiveGrain::Vec3 r1, r2, n;
     ActiveGrain::ContactMaterial material;
     double min_separation;
     AtomContact atoms;
   };
+  // Columns of the pending store (see pending).
+  enum PendingColumn { PENDING_FORCE = 0, PENDING_TORQUE = 3, PENDING_STEP = 6, NUM_PENDING };
 
   void allocate();
   void grow_buffers();
@@ -74,27 +91,29 @@ class PairGranImpulse : public Pair {
   void check_ghost_cutoff();
   double closing_speed_bound(int i, int j, const ActiveGrain::Vec3 &wall_velocity) const;
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
-  void add_contact(int body1, int body2, int atom1, int atom2, ImpulseWall *wall, int surface,
-                   const ActiveGrain::Vec3 &point, const ActiveGrain::Vec3 &n, double gap,
-                   const ActiveGrain::ContactMaterial &material, const ActiveGrain::Vec3 &r1,
-                   const ActiveGrain::Vec3 &r2);
+  void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
+                   double gap, const ActiveGrain::ContactMaterial &material,
+                   const ActiveGrain::Vec3 &r1, const ActiveGrain::Vec3 &r2);
   void gather_pair_contacts();
   void gather_wall_contacts();
   void add_found_contacts();
   void distribute_impulses();
   void apply_contact_forces(bool store);
+  void restore_pending_forces();
+  void record_solve(const ActiveGrain::ContactSolver::Result &result);
 
   // settings
   int max_sweeps;
-  double tolerance;
-  double beta;    // overlaps leave at >= beta * overlap / dt
+  double tolerance;    // on the residual of the body velocities
+  double beta;         // overlaps leave at >= beta * overlap / dt
+  Order order;
 
   double **restitution, **friction;
   double *maxrad;    // largest radius per type (neighbor cutoff)
 
   // The contact force of the last step also acts in the next initial_integrate. Across a run
   // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
-  // the atoms: 6 values (force, torque) and the step it belongs to.
+  // the atoms: force, torque and the step it belongs to (PendingColumn).
   class FixStoreAtom *pending;
 
   std::vector<RigidBodyProvider *> providers;
@@ -108,9 +127,9 @@ class PairGranImpulse : public Pair {
   std::vector<int> atom_body;                     // solver body of each atom, -1 before lookup
 
   // Which rank solves what (assign_contact_ranks): every contact of a rigid body's atom is
-  // solved on the body's solver rank, the owner of its lowest-tag atom, from one copy of each
-  // atom (the owned one, else the ghost image nearest that lowest-tag atom). Bead contacts
-  // stay with the owned beads.
+  // solved on the body's solver rank (LowestTagRule), from one copy of each atom (the owned
+  // one, else the ghost image nearest the body's lowest-tag atom). Bead contacts stay with the
+  // owned beads.
   bool ghost_pairs;                     // rigid bodies exist: full neighbor list with ghosts
   std::vector<tagint> rigid_body_id;    // per owned or ghost atom: its body's ID, 0 for a bead
   std::vector<char> solved_here;        // per atom: this rank solves its wall contacts (and, for
@@ -120,8 +139,10 @@ class PairGranImpulse : public Pair {
   int nmax;
   double **fcontact, **tcontact;
 
-  // Diagnostics of the last solve (extract()): contacts, sweeps, largest overlap.
-  double stats[4];    // contacts, sweeps, largest overlap this run, last relative impulse change
+  // This rank's solve of the last step, and since the run's setup (reduced into pvector).
+  double largest_overlap;
+  bigint capped_steps;
+  bigint next_cap_warning;    // capped_steps at which to warn next (10, 100, 1000, ...)
 };
 
 }    // namespace LAMMPS_NS

@@ -15,16 +15,11 @@ namespace rod_walking {
 constexpr double SETTLE = 0.1;     // s: let the rods find the plates before measuring
 constexpr double MEASURE = 2.0;    // s
 
-// Commands: every index variable of the deck set by `vars`, then the deck, then per-rod speed
-// along the axis averaged every 10 steps over MEASURE seconds. Rod k is molecule k.
-inline std::string deck(const std::map<std::string, std::string> &vars, int nrods)
+// Commands that measure, from now on, the speed of rods 1..nrods along their own axes (rod k is
+// molecule k): averaged every 10 steps over `seconds`.
+inline std::string measure(int nrods, double seconds = MEASURE)
 {
-  std::string cmd;
-  for (const auto &[name, value] : vars) cmd += "variable " + name + " index " + value + "\n";
-  cmd += "variable time index " + std::to_string(SETTLE) + "\n";
-  cmd += "include " ACTIVEGRAIN_SOURCE_DIR "/examples/single-rod/in.single-rod\n"
-         "undump bodies\nthermo 0\n";
-  std::string values;
+  std::string cmd, values;
   for (int k = 1; k <= nrods; ++k) {
     const std::string K = std::to_string(k);
     cmd += "group rod" + K + " molecule " + K + "\n"
@@ -33,11 +28,22 @@ inline std::string deck(const std::map<std::string, std::string> &vars, int nrod
         ",y)*c_polar" + K + "[2])/sqrt(c_polar" + K + "[1]^2+c_polar" + K + "[2]^2)\n";
     values += " v_along" + K;
   }
-  // Running average of samples every 10 steps from now on.
-  cmd += "variable nmeasure equal 10*round(" + std::to_string(MEASURE) + "/dt/10)\n"
+  cmd += "variable nmeasure equal 10*round(" + std::to_string(seconds) + "/dt/10)\n"
          "fix speed all ave/time 10 1 10" + values + " ave running\n"
          "run ${nmeasure}\n";
   return cmd;
+}
+
+// Commands: every index variable of the deck set by `vars`, then the deck, then per-rod speed
+// along the axis averaged every 10 steps over `seconds`.
+inline std::string deck(const std::map<std::string, std::string> &vars, int nrods, double seconds = MEASURE)
+{
+  std::string cmd;
+  for (const auto &[name, value] : vars) cmd += "variable " + name + " index " + value + "\n";
+  cmd += "variable time index " + std::to_string(SETTLE) + "\n";
+  cmd += "include " ACTIVEGRAIN_SOURCE_DIR "/examples/single-rod/in.single-rod\n"
+         "undump bodies\nthermo 0\n";
+  return cmd + measure(nrods, seconds);
 }
 
 // Mean speed along the own axis of each rod (m/s), the same on every rank.

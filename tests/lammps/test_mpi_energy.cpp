@@ -1,0 +1,95 @@
+// The energy claim for what users run: a dense packing of rods and beads between still plates,
+// gravity off, started with random velocities. Without the overlap correction (beta 0) no step
+// raises the kinetic energy; with it (beta 0.2, the default) a step may add at most the energy
+// of its minimum separation velocities, bounded by (1/2) M (beta * largest overlap / dt)^2 for
+// total mass M. Runs on 1, 2 and 4 ranks (test_mpi_*), rods across sub-domain edges.
+#include "beads_deck.h"
+
+#include "atom.h"
+#include "fix_rigid_small.h"
+#include "modify.h"
+
+namespace {
+constexpr int STEPS = 400;
+constexpr double DT = 1e-5;
+}    // namespace
+
+class DensePackingEnergy : public BeadMonolayer {
+ protected:
+  struct Result {
+    double largest_rise = 0.0;       // largest kinetic energy increase of one step (J)
+    double largest_fall = 0.0;       // largest decrease, for scale
+    double largest_overlap = 0.0;    // of any contact during the run (m)
+    double mass = 0.0;
+  };
+
+  // Kinetic energy of the beads (translation and spin) and of the rods (as rigid bodies).
+  double kinetic_energy()
+  {
+    auto *rods = dynamic_cast<LAMMPS_NS::FixRigidSmall *>(lmp->modify->get_fix_by_id("rodsfix"));
+    double **v = lmp->atom->v, **omega = lmp->atom->omega;
+    double beads = 0.0;
+    for (int i = 0; i < lmp->atom->nlocal; ++i) {
+      if (lmp->atom->type[i] <= 3) continue;    // rod atoms: their body's energy below
+      const double m = lmp->atom->rmass[i], r = lmp->atom->radius[i];
+      beads += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]) +
+          0.5 * 0.4 * m * r * r * (omega[i][0] * omega[i][0] + omega[i][1] * omega[i][1] + omega[i][2] * omega[i][2]);
+    }
+    double all = 0.0;
+    MPI_Allreduce(&beads, &all, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return all + rods->extract_ke() + rods->extract_erotational();
+  }
+
+  Result run(double beta)
+  {
+    command("atom_modify map array\n"
+            "variable geometry index box\nvariable Lx index 24e-3\nvariable Ly index 24e-3\n"
+            "variable phi_b index 0.55\nvariable phi_r index 0.10\nvariable amplitude index 0\n"
+            "variable seed index 11\nvariable out index test_mpi_energy_out\n"
+            "include " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads/in.create\n"
+            "unfix gravity\n"
+            "pair_style gran/impulse beta " + std::to_string(beta) + "\npair_coeff * * 0.3 0.05\n"
+            // Speeds of a few cm/s: rods run into rods and beads.
+            "velocity all create 3e14 4928 dist gaussian\n"
+            "thermo 0\ntimestep " + std::to_string(DT) + "\nrun 0 post no");
+    Result r;
+    double previous = kinetic_energy();
+    for (int step = 0; step < STEPS; ++step) {
+      command("run 1 pre no post no");
+      const double now = kinetic_energy();
+      r.largest_rise = std::max(r.largest_rise, now - previous);
+      r.largest_fall = std::max(r.largest_fall, previous - now);
+      previous = now;
+    }
+    r.largest_overlap = largest_overlap();
+    r.mass = value("mass(all)");
+    return r;
+  }
+  void report(const char *what, const Result &r)
+  {
+    int me = 0, nprocs = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &me);
+    MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
+    if (me == 0)
+      std::printf("[ measured ] %s, %d ranks: largest kinetic energy rise in a step %.3g J, largest fall %.3g J, "
+                  "largest overlap %.3g m\n",
+                  what, nprocs, r.largest_rise, r.largest_fall, r.largest_overlap);
+  }
+};
+
+TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithoutOverlapCorrection)
+{
+  const Result r = run(0.0);
+  report("beta 0", r);
+  ASSERT_GT(r.largest_fall, 0.0);    // contacts happened
+  EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall);
+}
+
+TEST_F(DensePackingEnergy, OverlapCorrectionAddsAtMostItsMinimumSeparationEnergy)
+{
+  const double beta = 0.2;
+  const Result r = run(beta);
+  report("beta 0.2", r);
+  const double push = beta * r.largest_overlap / DT;
+  EXPECT_LE(r.largest_rise, 0.5 * r.mass * push * push + 1e-9 * r.largest_fall);
+}
