@@ -1,12 +1,20 @@
 """Observables of one frame: area fractions, polarization, rods vs the bead gradient,
 the density on both sides of a rod layer, and a phase classifier.
 
-Area fractions count what is covered: every particle's projected shape (a bead's disc,
-a rod's tapered union of discs, counted once) is cut into area quadrature points whose
-weights sum to the exact shape area; a bin's fraction is the weight it receives divided
-by the bin's area inside the cell. The quadrature spacing (``spacing``, default a
-quarter of the smallest particle radius) sets how sharply a particle edge is resolved,
-never the total area.
+Area fractions count, per bin, projected area over the bin's area inside the cell, in one
+of two ways (``count``):
+
+* ``"covered"`` (default): the area that lies in the bin. Every particle's projected shape
+  (a bead's disc, a rod's tapered union of discs, counted once) is cut into area quadrature
+  points whose weights sum to the exact shape area. The quadrature spacing (``spacing``,
+  default a quarter of the smallest particle radius) sets how sharply a particle edge is
+  resolved, never the total area.
+* ``"centre"``: compute areafrac/chunk's per-atom count. A bead's whole disc goes to the
+  bin of its centre; a rod's exact area is split among its spheres (each sphere's part of
+  the union where it is the widest, :func:`activegrain.rods.chain_area_shares`) and each
+  part goes to the bin of that sphere's centre.
+
+The two agree on any bin much larger than a particle, up to the particles cut by its edges.
 """
 import warnings
 from dataclasses import dataclass, field
@@ -37,17 +45,25 @@ def default_spacing(frame):
     return 0.25 * float(frame.radius.min())
 
 
-def area_samples(frame, species="beads", spacing=None):
-    """Area quadrature points ``(xy, weight)`` of the beads, the rods or both."""
+COUNTS = ("covered", "centre")
+
+
+def area_samples(frame, species="beads", spacing=None, count="covered"):
+    """Points carrying area ``(xy, weight)`` of the beads, the rods or both: area
+    quadrature points (``count="covered"``) or the atoms' centres with their areas
+    (``count="centre"``, see the module's docstring)."""
     if species not in SPECIES:
         raise ValueError(f"species must be one of {SPECIES}, got '{species}'")
+    if count not in COUNTS:
+        raise ValueError(f"count must be one of {COUNTS}, got '{count}'")
     spacing = spacing or default_spacing(frame)
     parts = []
     if species in ("beads", "all"):
         xy, r, _ = frame.beads()
-        parts.append(disc_samples(xy, r, spacing))
+        parts.append(disc_samples(xy, r, spacing) if count == "covered" else (xy, np.pi * r ** 2))
     if species in ("rods", "all"):
-        parts.append(frame.rods().samples(spacing))
+        rods = frame.rods()
+        parts.append(rods.samples(spacing) if count == "covered" else rods.sphere_areas())
     xy = np.concatenate([p[0] for p in parts])
     return frame.box.wrap(xy), np.concatenate([p[1] for p in parts])
 
@@ -67,23 +83,26 @@ def _coordinate_in_range(geometry, xy, coord, edges):
     return q
 
 
-def area_fraction_profile(frame, geometry, coord="x", bins=50, species="beads", spacing=None):
-    """Covered area fraction in bins of ``coord`` ('x', 'y'; 'r', 'theta' for an annulus)."""
+def area_fraction_profile(frame, geometry, coord="x", bins=50, species="beads", spacing=None,
+                          count="covered"):
+    """Area fraction in bins of ``coord`` ('x', 'y'; 'r', 'theta' for an annulus), counted
+    as ``count`` says (module docstring)."""
     edges = _edges(geometry, coord, bins)
-    xy, w = area_samples(frame, species, spacing)
+    xy, w = area_samples(frame, species, spacing, count)
     q = _coordinate_in_range(geometry, xy, coord, edges)
     covered, _ = np.histogram(q, edges, weights=w)
     return Profile(coord, species, edges, covered / geometry.bin_areas(coord, edges))
 
 
-def area_fraction_map(frame, geometry, bins=(50, 10), species="beads", spacing=None):
-    """2D map of the covered fraction: ``(x_edges, y_edges, phi[nx, ny])``.
+def area_fraction_map(frame, geometry, bins=(50, 10), species="beads", spacing=None, count="covered"):
+    """2D map of the area fraction: ``(x_edges, y_edges, phi[nx, ny])``, counted as
+    ``count`` says (module docstring).
 
     For an annulus the map covers its bounding square; each pixel's fraction is relative
     to the pixel's area inside the annulus (pixels wholly outside are NaN).
     """
     xe, ye = _edges(geometry, "x", bins[0]), _edges(geometry, "y", bins[1])
-    xy, w = area_samples(frame, species, spacing)
+    xy, w = area_samples(frame, species, spacing, count)
     x = _coordinate_in_range(geometry, xy, "x", xe)
     y = _coordinate_in_range(geometry, xy, "y", ye)
     covered, _, _ = np.histogram2d(x, y, (xe, ye), weights=w)
@@ -126,6 +145,17 @@ def polar_order(vectors):
     return m, float(np.linalg.norm(m))
 
 
+def nematic_order(vectors):
+    """|<exp(2 i theta)>| of the in-plane angles theta of ``vectors`` (zero vectors
+    skipped): 1 for axes along one line whichever way they point, 0 for isotropic."""
+    v = np.asarray(vectors, float).reshape(-1, 2)
+    v = v[np.linalg.norm(v, axis=1) > 0]
+    if len(v) == 0:
+        return 0.0
+    theta = np.arctan2(v[:, 1], v[:, 0])
+    return float(np.hypot(np.cos(2 * theta).sum(), np.sin(2 * theta).sum()) / len(v))
+
+
 def tangential_polarization(rods, annulus):
     """Mean of p . e_theta over the rods of an annulus (+1: all counter-clockwise)."""
     if len(rods) == 0:
@@ -136,13 +166,15 @@ def tangential_polarization(rods, annulus):
 def polarization(frame, geometry=None):
     """Polar order of rod axes and of rod and bead velocities.
 
-    Returns a dict: ``P`` = |<p>|, ``Px``, ``Py``, ``n_rods``, ``P_tangential`` (annulus
-    only), ``rod_velocity_order`` and ``bead_velocity_order`` (|<v/|v|>|, when the dump
-    has velocities).
+    Returns a dict: ``P`` = |<p>|, ``Px``, ``Py``, ``S`` (nematic order
+    |<exp(2 i theta)>|), ``n_rods``, ``P_tangential`` (annulus only),
+    ``rod_velocity_order`` and ``bead_velocity_order`` (|<v/|v|>|, when the dump has
+    velocities). p is each rod's in-plane polar axis, as compute polar/rod's.
     """
     rods = frame.rods()
     m, P = polar_order(rods.axis)
-    out = {"n_rods": len(rods), "P": P, "Px": float(m[0]), "Py": float(m[1])}
+    out = {"n_rods": len(rods), "P": P, "Px": float(m[0]), "Py": float(m[1]),
+           "S": nematic_order(rods.axis)}
     if isinstance(geometry, Annulus):
         out["P_tangential"] = tangential_polarization(rods, geometry)
     if rods.velocity is not None:

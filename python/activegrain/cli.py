@@ -61,7 +61,8 @@ def cmd_profile(args, out):
                     for fr in frames]
         name = "distance_ahead_of_layer"
     else:
-        profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species) for fr in frames]
+        profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species, count=args.count)
+                    for fr in frames]
         name = args.coord
     mean = np.mean([p.fraction for p in profiles], axis=0)
     avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
@@ -77,7 +78,7 @@ def cmd_profile(args, out):
 def cmd_map(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    maps = [analysis.area_fraction_map(fr, geom, tuple(args.bins), args.species) for fr in frames]
+    maps = [analysis.area_fraction_map(fr, geom, tuple(args.bins), args.species, count=args.count) for fr in frames]
     xe, ye = maps[0][0], maps[0][1]
     phi = np.mean([m[2] for m in maps], axis=0)
     if args.output.endswith(".txt") or args.output.endswith(".csv"):
@@ -192,6 +193,8 @@ def build_parser():
     p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
     p.add_argument("--bins", type=int, default=50)
     p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("--count", default="covered", choices=analysis.COUNTS,
+                   help="covered: area where it lies; centre: per atom centre, as compute areafrac/chunk")
     p.add_argument("--relative-to-layer", action="store_true",
                    help="profile against the distance ahead of each frame's densest rod layer")
     p.add_argument("--extent", type=float, help="with --relative-to-layer: largest |distance|")
@@ -204,6 +207,8 @@ def build_parser():
     _add_dump_args(p)
     p.add_argument("--bins", type=int, nargs=2, default=[60, 12], metavar=("NX", "NY"))
     p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p.add_argument("--count", default="covered", choices=analysis.COUNTS,
+                   help="covered: area where it lies; centre: per atom centre, as compute areafrac/chunk")
     p.add_argument("-o", "--output", required=True)
     p.set_defaults(func=cmd_map)
 

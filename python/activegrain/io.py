@@ -1,16 +1,21 @@
 """Reading and writing LAMMPS text dumps of rods and beads.
 
-Dump convention of the package (``dump ID all custom N file id mol type radius x y z
-vx vy vz``, optionally ``ix iy iz``): beads have ``mol`` = 0, the atoms of a rod share
-``mol`` = the rod's ID (> 0).
+Dump convention of the package (what the example decks write)::
 
-Frames are read through MDAnalysis (positions, velocities, box lengths, time step).
-MDAnalysis drops the columns it has no use for and the boundary flags, so the static
-per-atom columns (``mol``, ``type``, ``radius``) and the box bounds with their
-``pp``/``ff`` flags are read from the first frame's header here. They do not change in
-the simulations this package makes (no atoms are created or deleted, walls are fixed).
+    dump ID all custom N file id mol type radius x y z vx vy vz f_rodsfix[4]
+    dump_modify ID colname f_rodsfix[4] body
+
+``body`` is fix rigid/rod's per-atom body ID: the ID of the atom's rod, 0 for a bead. Rods
+are told apart by ``body`` where the dump has it, else by ``mol`` (beads 0, the atoms of a rod
+share the rod's ID); either way every rod is checked to be one chain of overlapping spheres
+(:meth:`activegrain.rods.RodSet.from_frame`). ``ix iy iz`` are optional; ``xu yu zu`` or
+``xs ys zs`` may replace ``x y z``; ``type`` is optional.
+
+Frames are parsed here, in double precision (a dump written with ``dump_modify format float
+%.12g`` keeps 12 digits; MDAnalysis's reader would hold positions as float32, 1e-7 of the
+box). The box must not change during a run and the header must be the plain one.
 """
-import warnings
+import itertools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -21,7 +26,8 @@ from .geometry import Box
 @dataclass
 class Frame:
     """One snapshot. Arrays are sorted by atom id; lengths in the dump's units
-    divided by ``length_unit`` (see :func:`read_dump`)."""
+    divided by ``length_unit`` (see :func:`read_dump`). ``body``: the atoms' rod IDs
+    (fix rigid/rod's body ID, 0 for beads) when the dump has them, else None."""
     step: int
     time: float
     box: Box
@@ -31,10 +37,16 @@ class Frame:
     radius: np.ndarray
     pos: np.ndarray          # (N, 3)
     vel: np.ndarray = None   # (N, 3) or None
+    body: np.ndarray = None  # (N,) or None
+
+    @property
+    def rod_of_atom(self):
+        """Per atom, the ID of its rod (0 for a bead): ``body`` if the dump has it, else ``mol``."""
+        return self.mol if self.body is None else self.body
 
     @property
     def is_bead(self):
-        return self.mol == 0
+        return self.rod_of_atom == 0
 
     def beads(self):
         """(positions (Nb, 2), radii (Nb,), velocities (Nb, 2) or None) of the beads."""
@@ -53,60 +65,64 @@ class Frame:
                        pos=self.pos * factor, vel=None if self.vel is None else self.vel * factor)
 
     def to_ase(self):
-        """The frame as an :class:`ase.Atoms` (cell, pbc, ``mol`` and ``radius`` arrays)."""
+        """The frame as an :class:`ase.Atoms` (cell, pbc, ``mol``, ``radius`` and, when
+        known, ``body`` arrays)."""
         import ase
         atoms = ase.Atoms(numbers=np.ones(len(self.ids), int), positions=self.pos - self.box.lo,
                           cell=np.diag(self.box.lengths), pbc=self.box.periodic)
         atoms.set_array("mol", self.mol.copy())
         atoms.set_array("radius", self.radius.copy())
         atoms.set_array("id", self.ids.copy())
+        if self.body is not None:
+            atoms.set_array("body", self.body.copy())
         if self.vel is not None:
             atoms.set_velocities(self.vel)
         return atoms
 
 
-def _read_header(path):
-    """Box bounds with boundary flags and the per-atom columns of the first frame."""
-    with open(path) as f:
-        lines = [f.readline() for _ in range(9)]
-        if any(l.startswith(("ITEM: UNITS", "ITEM: TIME\n")) for l in lines):
+_POSITION_COLUMNS = (("x", "y", "z"), ("xu", "yu", "zu"), ("xs", "ys", "zs"))
+
+
+def _frame_headers(f, path):
+    """Yield (step, box, columns, n) at each frame of open dump ``f``, positioned at its rows."""
+    for line in f:
+        if not line.strip():
+            continue
+        if line.startswith(("ITEM: UNITS", "ITEM: TIME\n")):
             raise ValueError(f"{path}: dumps written with 'dump_modify units yes' or 'time yes' "
-                             "are not supported (MDAnalysis expects the plain header)")
-        if not lines[0].startswith("ITEM: TIMESTEP") or not lines[8].startswith("ITEM: ATOMS"):
+                             "are not supported (plain header expected)")
+        head = [line] + [f.readline() for _ in range(8)]
+        if not head[0].startswith("ITEM: TIMESTEP") or not head[8].startswith("ITEM: ATOMS"):
             raise ValueError(f"{path}: not a LAMMPS text dump (ITEM: TIMESTEP / ITEM: ATOMS expected)")
-        n = int(lines[3])
-        flags = lines[4].split()[3:]
-        if len(flags) < 3 or any(x in ("xy", "xz", "yz") for x in flags):
-            if any(x in ("xy", "xz", "yz") for x in flags):
-                raise ValueError(f"{path}: triclinic boxes are not supported")
+        flags = head[4].split()[3:]
+        if any(x in ("xy", "xz", "yz") for x in flags):
+            raise ValueError(f"{path}: triclinic boxes are not supported")
+        if len(flags) < 3:
             flags = ["pp", "pp", "pp"]
-        bounds = np.array([[float(v) for v in lines[5 + k].split()[:2]] for k in range(3)])
-        columns = lines[8].split()[2:]
-        table = np.loadtxt(f, max_rows=n, ndmin=2)
-    missing = [c for c in ("id", "mol", "radius") if c not in columns]
-    if missing:
-        raise ValueError(f"{path}: dump lacks column(s) {', '.join(missing)} "
-                         "(need: id mol type radius x y z ...)")
+        bounds = np.array([[float(v) for v in head[5 + k].split()[:2]] for k in range(3)])
+        box = Box(tuple(bounds[:, 0]), tuple(bounds[:, 1]), tuple(fl[0] == "p" for fl in flags))
+        yield int(head[1]), box, head[8].split()[2:], int(head[3])
+
+
+def _frame(step, timestep, box, columns, rows, path):
+    table = np.fromstring(" ".join(rows), sep=" ").reshape(len(rows), len(columns)) if rows \
+        else np.zeros((0, len(columns)))
     col = {c: table[:, i] for i, c in enumerate(columns)}
-    order = np.argsort(col["id"])
-    static = {c: col[c][order] for c in ("id", "mol", "radius")}
-    static["type"] = col["type"][order] if "type" in col else np.ones(n)
-    box = Box(tuple(bounds[:, 0]), tuple(bounds[:, 1]), tuple(f[0] == "p" for f in flags))
-    return box, static, columns
-
-
-def _universe(path, unwrap):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # MDAnalysis warns about its imports and guessed masses
-        # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
-        # which override ours: import it first, here, so that the warning is not printed.
-        try:
-            import xdrlib  # noqa: F401
-        except ImportError:
-            pass
-        import MDAnalysis as mda
-        return mda.Universe(path, topology_format="LAMMPSDUMP", format="LAMMPSDUMP",
-                            unwrap_images=unwrap)
+    missing = [c for c in ("id", "mol", "radius") if c not in col]
+    xyz = next((names for names in _POSITION_COLUMNS if all(c in col for c in names)), None)
+    if missing or xyz is None:
+        raise ValueError(f"{path}: dump lacks column(s) {', '.join(missing) or 'x y z'} "
+                         "(need: id mol type radius x y z ..., see activegrain.io)")
+    order = np.argsort(col["id"], kind="stable")
+    pos = np.column_stack([col[c][order] for c in xyz])
+    if xyz[0] == "xs":
+        pos = np.asarray(box.lo) + pos * box.lengths
+    vel = np.column_stack([col[c][order] for c in ("vx", "vy", "vz")]) if "vx" in col else None
+    as_int = lambda c: col[c][order].astype(np.int64)
+    return Frame(step, step * timestep, box, as_int("id"), as_int("mol"),
+                 as_int("type") if "type" in col else np.ones(len(order), np.int64),
+                 col["radius"][order].copy(), box.wrap(pos), vel,
+                 as_int("body") if "body" in col else None)
 
 
 def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=None):
@@ -115,32 +131,33 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
     ``length_unit``: lengths (and velocities) are divided by it, e.g. ``1e-3`` to work
     in bead diameters when the dump is in metres. ``timestep``: time per MD step, so that
     ``frame.time = step * timestep``. ``start``, ``stop``, ``every`` slice the frames.
+    Positions are wrapped into the box along periodic axes (rods are regrouped by the
+    minimum image).
     """
-    box, static, columns = _read_header(path)
-    unwrap = all(c in columns for c in ("ix", "iy", "iz"))
-    u = _universe(path, unwrap)
-    lo = np.asarray(box.lo, float)
-    ids = static["id"].astype(np.int64)
-    mol = static["mol"].astype(np.int64)
-    types = static["type"].astype(np.int64)
-    for ts in u.trajectory[slice(start, stop, every)]:
-        if not np.allclose(ts.dimensions[:3], box.lengths, rtol=1e-6):
-            raise ValueError(f"{path}: the box changes at step {ts.data['step']}; "
-                             "only fixed boxes are supported")
-        pos = ts.positions.astype(np.float64) + lo  # MDAnalysis moves the box to the origin
-        vel = ts.velocities.astype(np.float64) if ts.has_velocities else None
-        step = int(ts.data["step"])
-        # positions are kept wrapped (dumps may carry xu/yu/zu or image flags); rods and
-        # trajectories are unwrapped by the minimum image where needed
-        frame = Frame(step, step * timestep, box, ids, mol, types, static["radius"].copy(),
-                      box.wrap(pos), vel)
-        yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
+    wanted = set(range(count_frames(path))[slice(start, stop, every)])
+    first_box = None
+    with open(path) as f:
+        for index, (step, box, columns, n) in enumerate(_frame_headers(f, path)):
+            first_box = first_box or box
+            if not np.allclose(box.lengths, first_box.lengths, rtol=1e-6):
+                raise ValueError(f"{path}: the box changes at step {step}; only fixed boxes are supported")
+            rows = list(itertools.islice(f, n))
+            if len(rows) < n:
+                raise ValueError(f"{path}: frame at step {step} is truncated")
+            if index in wanted:
+                frame = _frame(step, timestep, box, columns, rows, path)
+                yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
 
 
 def count_frames(path):
     """Number of frames in a dump."""
-    _read_header(path)
-    return len(_universe(path, False).trajectory)
+    with open(path) as f:
+        n = sum(1 for line in f if line.startswith("ITEM: TIMESTEP"))
+    if n == 0:
+        with open(path) as f:
+            next(_frame_headers(f, path), None)  # says why it is not a dump
+        raise ValueError(f"{path}: no frames")
+    return n
 
 
 def read_frame(path, index=-1, **kw):
@@ -155,8 +172,9 @@ def read_frame(path, index=-1, **kw):
 def write_dump(path, frames, append=False):
     """Write frames as a LAMMPS text dump in the package's convention.
 
-    ``frames``: iterable of :class:`Frame`. Columns: ``id mol type radius x y z`` and
-    ``vx vy vz`` when the frame has velocities. Used to make synthetic test data.
+    ``frames``: iterable of :class:`Frame`. Columns: ``id mol type radius x y z``,
+    ``vx vy vz`` when the frame has velocities and ``body`` when it has rod IDs. Used to
+    make synthetic test data.
     """
     with open(path, "a" if append else "w") as f:
         for fr in frames:
@@ -171,10 +189,51 @@ def write_dump(path, frames, append=False):
             if fr.vel is not None:
                 cols += ["vx", "vy", "vz"]
                 data += [fr.vel[:, 0], fr.vel[:, 1], fr.vel[:, 2]]
+            if fr.body is not None:
+                cols.append("body")
+                data.append(fr.body)
             f.write("ITEM: ATOMS " + " ".join(cols) + "\n")
             table = np.column_stack(data)
-            fmt = ["%d", "%d", "%d"] + ["%.10g"] * (len(cols) - 3)
+            fmt = ["%d", "%d", "%d"] + ["%.12g"] * (len(cols) - 3 - (fr.body is not None)) \
+                + ["%d"] * (fr.body is not None)
             np.savetxt(f, table, fmt=fmt)
+
+
+def to_universe(frames):
+    """The frames as an in-memory :class:`MDAnalysis.Universe`, for analyses of one's own with
+    MDAnalysis: one residue per rod (resname ``ROD``, resid its rod ID, the ``body`` or ``mol`` of
+    its atoms) and one per bead (``BEAD``, resid 0), atom ``ids``, ``types`` and ``radii``, the
+    box as ``dimensions``, one trajectory frame per frame (``u.select_atoms("resname ROD")``,
+    ``u.residues``). MDAnalysis keeps positions as float32: the measurements of this package
+    work on the frames themselves, in double precision."""
+    import warnings
+    with warnings.catch_warnings():
+        # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
+        # which override ours: import it first, here, so that the warning is not printed.
+        warnings.simplefilter("ignore", DeprecationWarning)
+        try:
+            import xdrlib  # noqa: F401
+        except ImportError:
+            pass
+        import MDAnalysis
+        from MDAnalysis.coordinates.memory import MemoryReader
+    frames = list(frames)
+    first = frames[0]
+    rod = first.rod_of_atom
+    # A residue per rod, and per bead (told apart by the negated atom ID).
+    key = np.where(rod > 0, rod, -first.ids)
+    keys, resindex = np.unique(key, return_inverse=True)
+    u = MDAnalysis.Universe.empty(len(first.ids), n_residues=len(keys), atom_resindex=resindex,
+                                  trajectory=True)
+    u.add_TopologyAttr("ids", first.ids)
+    u.add_TopologyAttr("types", first.types.astype(str))
+    u.add_TopologyAttr("radii", first.radius)
+    u.add_TopologyAttr("resids", np.maximum(keys, 0))
+    u.add_TopologyAttr("resnames", np.where(keys > 0, "ROD", "BEAD"))
+    positions = np.stack([fr.pos - fr.box.lo for fr in frames])
+    dimensions = np.array([list(fr.box.lengths) + [90.0, 90.0, 90.0] for fr in frames])
+    u.load_new(positions, format=MemoryReader, order="fac", dimensions=dimensions)
+    return u
 
 
 def write_extxyz(path, frames):

@@ -29,15 +29,17 @@ def _chain_breakpoints(c, r):
     return np.unique(np.clip(pts, lo, hi))
 
 
-def chain_area(centres, radii):
-    """Exact area of the union of discs whose centres lie on a line.
+def chain_area_shares(centres, radii):
+    """The union of discs whose centres lie on a line, split into one share per disc.
 
     Between consecutive breakpoints (disc ends and pairwise arc crossings) one disc forms
-    the envelope; its slice area is integrated analytically.
+    the upper envelope; its slice area is integrated analytically and given to that disc
+    (the first of equal ones). Disc k's share is thus the union's part where disc k is the
+    widest: its cell of the discs' power diagram, the split compute areafrac/chunk makes.
     """
     c, r = np.asarray(centres, float), np.asarray(radii, float)
+    shares = np.zeros(len(c))
     b = _chain_breakpoints(c, r)
-    area = 0.0
     for s0, s1 in zip(b[:-1], b[1:]):
         mid = 0.5 * (s0 + s1)
         w = r * r - (mid - c) ** 2
@@ -48,8 +50,14 @@ def chain_area(centres, radii):
         def prim(u, ri=r[i]):  # integral of 2*sqrt(r^2 - u^2)
             t = np.clip(u / ri, -1, 1)
             return ri * ri * (np.arcsin(t) + t * np.sqrt(1 - t * t))
-        area += prim(s1 - c[i]) - prim(s0 - c[i])
-    return float(area)
+        shares[i] += prim(s1 - c[i]) - prim(s0 - c[i])
+    return shares
+
+
+def chain_area(centres, radii):
+    """Exact area of the union of discs whose centres lie on a line
+    (the sum of :func:`chain_area_shares`)."""
+    return float(chain_area_shares(centres, radii).sum())
 
 
 def chain_samples(centres, radii, spacing):
@@ -86,16 +94,43 @@ def chain_outline(centres, radii, n=24):
     return np.concatenate([s, s[::-1]]), np.concatenate([h, -h[::-1]])
 
 
+def _chain_error(centres, radii):
+    """Why spheres (3-D ``centres``, unwrapped, and ``radii``) are not one rod, or None.
+
+    A rod is one straight chain: all centres on one line (within 1% of the smallest
+    radius), each sphere overlapping the next one along it, radii not growing from the
+    tail (the widest end) to the nose.
+    """
+    if len(radii) < 2 or np.ptp(radii) <= 1e-9 * radii.max():
+        return "needs at least two spheres with a larger tail than nose radius to tell its polarity"
+    d = centres - centres.mean(axis=0)
+    u = np.linalg.svd(d, full_matrices=False)[2][0]
+    s = d @ u
+    off_line = np.linalg.norm(d - s[:, None] * u, axis=1).max()
+    if off_line > 0.01 * radii.min():
+        return f"is not one chain of spheres: its sphere centres are not on one line ({off_line:.3g} off it)"
+    k = np.argsort(s, kind="stable")
+    gaps = np.diff(s[k]) - (radii[k][1:] + radii[k][:-1])
+    if np.any(gaps >= 0):
+        return f"is not one chain of overlapping spheres: a gap of {gaps.max():.3g} between two"
+    taper = np.diff(radii[k]) * np.sign(np.sum(s * (radii - radii.mean())))
+    if np.any(taper < -1e-9 * radii.max()):
+        return "is not one tapered chain: its radii do not shrink monotonically from one end to the other"
+    return None
+
+
 @dataclass
 class RodSet:
     """Rods of one frame, in the xy plane.
 
-    ``ids``: rod (molecule) IDs; ``centre``: middle of the tail-nose sphere segment,
-    wrapped into the box; ``axis``: unit vector p from tail to nose; ``tail``/``nose``:
-    centres of the end spheres (unwrapped with the rod); ``velocity``: mean velocity of
-    the rod's atoms (that of their centroid, for a rigid body) or None;
+    ``ids``: rod IDs (the dump's ``body``, else ``mol``); ``centre``: middle of the
+    tail-nose sphere segment, wrapped into the box; ``axis``: the polar axis p, the unit
+    in-plane direction of the rod's axis from tail (widest sphere) to nose (narrowest);
+    ``tail``/``nose``: centres of the end spheres (unwrapped with the rod); ``velocity``:
+    mean velocity of the rod's atoms (that of their centroid, for a rigid body) or None;
     ``sphere_s``/``sphere_r``: per rod, the spheres' axial positions relative to
-    ``centre`` and their radii.
+    ``centre`` in the plane and their radii; ``sphere_xy``: per rod, the spheres'
+    centres wrapped into the box.
     """
     ids: np.ndarray
     centre: np.ndarray
@@ -105,6 +140,7 @@ class RodSet:
     velocity: np.ndarray
     sphere_s: list
     sphere_r: list
+    sphere_xy: list
 
     def __len__(self):
         return len(self.ids)
@@ -119,26 +155,42 @@ class RodSet:
         """Exact projected area of each rod."""
         return np.array([chain_area(s, r) for s, r in zip(self.sphere_s, self.sphere_r)])
 
+    def sphere_areas(self):
+        """Per sphere of every rod, its centre (M, 2) and its share (M,) of its rod's
+        projected area (:func:`chain_area_shares`): how compute areafrac/chunk bins rods."""
+        xy = [np.zeros((0, 2))] + list(self.sphere_xy)
+        shares = [np.zeros(0)] + [chain_area_shares(s, r) for s, r in zip(self.sphere_s, self.sphere_r)]
+        return np.concatenate(xy), np.concatenate(shares)
+
     @classmethod
     def from_frame(cls, frame):
+        """The rods of a :class:`activegrain.io.Frame`, grouped by ``frame.rod_of_atom``.
+
+        Raises ValueError naming the rod and its atoms if a rod's atoms are not one chain
+        of overlapping spheres (e.g. beads carrying a rod's molecule ID).
+        """
         box = frame.box
-        m = frame.mol > 0
-        mol, pos, rad = frame.mol[m], frame.pos[m, :2], frame.radius[m]
+        rod_id = frame.rod_of_atom
+        m = rod_id > 0
+        rid, pos, rad, atom = rod_id[m], frame.pos[m], frame.radius[m], frame.ids[m]
         vel = None if frame.vel is None else frame.vel[m, :2]
-        order = np.argsort(mol, kind="stable")
-        mol, pos, rad = mol[order], pos[order], rad[order]
+        order = np.argsort(rid, kind="stable")
+        rid, pos, rad, atom = rid[order], pos[order], rad[order], atom[order]
         vel = None if vel is None else vel[order]
-        ids, starts = np.unique(mol, return_index=True)
-        ends = np.append(starts[1:], len(mol))
-        centre, axis, tail, nose, velocity, ss, rr = [], [], [], [], [], [], []
+        ids, starts = np.unique(rid, return_index=True)
+        ends = np.append(starts[1:], len(rid))
+        by = "body" if frame.body is not None else "mol"
+        centre, axis, tail, nose, velocity, ss, rr, xys = [], [], [], [], [], [], [], []
         for a, b in zip(starts, ends):
-            x, r = pos[a:b], rad[a:b]
-            if b - a < 2 or np.ptp(r) <= 1e-9 * r.max():
-                raise ValueError(f"rod {mol[a]}: needs at least two spheres with a larger tail "
-                                 "than nose radius to tell its polarity")
-            x = x[0] + box.minimum_image(x - x[0])  # rods may straddle a periodic boundary
-            # axis: principal direction of the sphere centres, oriented towards the
+            r = rad[a:b]
+            x3 = pos[a] + box.minimum_image(pos[a:b] - pos[a])  # rods may straddle a periodic boundary
+            why = _chain_error(x3, r)
+            if why is not None:
+                shown = ", ".join(map(str, atom[a:b][:12])) + (", ..." if b - a > 12 else "")
+                raise ValueError(f"rod {rid[a]} ({by} {rid[a]}: atoms {shown}) {why}")
+            # p: the in-plane direction of the line through the centres, towards the
             # shrinking radii (robust to sphere order and to equal radii at one end)
+            x = x3[:, :2]
             d = x - x.mean(axis=0)
             p = np.linalg.svd(d, full_matrices=False)[2][0]
             if np.sum((d @ p) * (r - r.mean())) > 0:
@@ -152,6 +204,7 @@ class RodSet:
             nose.append(n)
             ss.append((x - mid) @ p)
             rr.append(r.copy())
+            xys.append(box.wrap(x))
             if vel is not None:
                 velocity.append(vel[a:b].mean(axis=0))
         centre = np.array(centre).reshape(-1, 2)
@@ -159,7 +212,7 @@ class RodSet:
         shift = wrapped - centre
         return cls(ids, wrapped, np.array(axis).reshape(-1, 2), np.array(tail).reshape(-1, 2) + shift,
                    np.array(nose).reshape(-1, 2) + shift,
-                   np.array(velocity).reshape(-1, 2) if vel is not None else None, ss, rr)
+                   np.array(velocity).reshape(-1, 2) if vel is not None else None, ss, rr, xys)
 
     def samples(self, spacing):
         """Area quadrature points (xy (M, 2), weight (M,)) of all rods' projected shapes."""

@@ -62,6 +62,8 @@ RodChain project_rod_chain(const std::vector<Vec3> &centres, const std::vector<d
   }
   const Vec3 span = centres[nose] - centres[tail];
   if (radii[tail] > radii[nose] && norm2(span) > 0) rod.axis = span / norm(span);
+  const Vec3 flat(rod.axis.x, rod.axis.y, 0.0);
+  if (norm2(flat) > 0) rod.polar = flat / norm(flat);
 
   // Positions along the rod's projection on the plane: any in-plane direction through the
   // chain works, the widest-to-farthest sphere gives a well-defined one even without taper.

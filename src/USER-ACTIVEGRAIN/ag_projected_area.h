@@ -17,13 +17,14 @@ std::vector<double> disc_chain_area_shares(const std::vector<double> &centres,
 
 // A rod seen through its constituent spheres (centres on the rod's axis, tapered radii).
 struct RodChain {
-  Vec3 axis;                    // unit polar axis p, from the widest sphere (tail) to the narrowest (nose)
+  Vec3 axis;                    // unit 3-D axis, from the widest sphere (tail) to the narrowest (nose)
+  Vec3 polar;                   // the polar axis p as seen from above: axis projected on xy, unit length
   std::vector<double> shares;   // each sphere's share of the rod's projected area in the xy plane
 };
 
-// The polar axis and xy projected-area shares of a rod from its spheres' centres and radii.
+// The axes and xy projected-area shares of a rod from its spheres' centres and radii.
 // The centres must be unwrapped (one periodic image); at least two spheres of different radius
-// are needed for the axis to be defined (otherwise axis is zero).
+// are needed for the axis to be defined (otherwise axis and polar are zero).
 RodChain project_rod_chain(const std::vector<Vec3> &centres, const std::vector<double> &radii);
 
 }    // namespace ActiveGrain

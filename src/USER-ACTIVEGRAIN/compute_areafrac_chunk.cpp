@@ -81,8 +81,8 @@ void ComputeAreafracChunk::compute_array()
     const double share = rods.area_share(i);
     sums[c][ROD_AREA] += share;
     sums[c][ROD_COUNT] += share / rod.area;
-    sums[c][ROD_PX] += share * rod.axis.x;
-    sums[c][ROD_PY] += share * rod.axis.y;
+    sums[c][ROD_PX] += share * rod.polar.x;
+    sums[c][ROD_PY] += share * rod.polar.y;
   }
   MPI_Allreduce(&sums[0][0], &totals[0][0], nchunk * NSUMS, MPI_DOUBLE, MPI_SUM, world);
 

@@ -9,8 +9,8 @@
 
 using namespace LAMMPS_NS;
 
-enum { POLAR, PX, PY, PZ, NEMATIC, NRODS, NVECTOR };
-enum { ID, X, Y, Z, AXIS_X, AXIS_Y, AXIS_Z, VX, VY, VZ, NCOLS };
+enum { POLAR, PX, PY, AXIS_Z_MEAN, NEMATIC, NRODS, NVECTOR };
+enum { ID, X, Y, Z, POLAR_X, POLAR_Y, AXIS_Z, VX, VY, VZ, NCOLS };
 
 ComputePolarRod::ComputePolarRod(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), rods(lmp, "polar/rod", true)
@@ -44,36 +44,39 @@ double ComputePolarRod::compute_scalar()
   return scalar;
 }
 
-// |<p>|, <p>, the 2D nematic order of the in-plane axes, and the number of rods.
+// Over the rods, with p each rod's in-plane polar axis (docs/compute_polar_rod.rst): |<p>|,
+// <p>, the mean z component of the 3-D axes (tilt), the nematic order |<exp(2 i theta)>| of p's
+// angles, and the number of rods.
 void ComputePolarRod::compute_vector()
 {
   invoked_vector = update->ntimestep;
   rods.update(groupbit);
-  double sum[6] = {0, 0, 0, 0, 0, 0};    // px, py, pz, cos 2theta, sin 2theta, count
+  enum { SUM_PX, SUM_PY, SUM_AXIS_Z, SUM_COS2, SUM_SIN2, SUM_COUNT, NSUM };
+  double sum[NSUM] = {0, 0, 0, 0, 0, 0};
   for (const auto &rod : rods.rods()) {
     if (!rod.counted_here) continue;
-    const double theta = std::atan2(rod.axis.y, rod.axis.x);
-    sum[0] += rod.axis.x;
-    sum[1] += rod.axis.y;
-    sum[2] += rod.axis.z;
-    sum[3] += std::cos(2 * theta);
-    sum[4] += std::sin(2 * theta);
-    sum[5] += 1;
+    const double theta = std::atan2(rod.polar.y, rod.polar.x);
+    sum[SUM_PX] += rod.polar.x;
+    sum[SUM_PY] += rod.polar.y;
+    sum[SUM_AXIS_Z] += rod.axis.z;
+    sum[SUM_COS2] += std::cos(2 * theta);
+    sum[SUM_SIN2] += std::sin(2 * theta);
+    sum[SUM_COUNT] += 1;
   }
-  double all[6];
-  MPI_Allreduce(sum, all, 6, MPI_DOUBLE, MPI_SUM, world);
-  const double n = all[5];
+  double all[NSUM];
+  MPI_Allreduce(sum, all, NSUM, MPI_DOUBLE, MPI_SUM, world);
+  const double n = all[SUM_COUNT];
   for (int k = 0; k < NVECTOR; ++k) vector[k] = 0.0;
   vector[NRODS] = n;
   if (n == 0) return;
-  vector[PX] = all[0] / n;
-  vector[PY] = all[1] / n;
-  vector[PZ] = all[2] / n;
-  vector[POLAR] = std::sqrt(vector[PX] * vector[PX] + vector[PY] * vector[PY] + vector[PZ] * vector[PZ]);
-  vector[NEMATIC] = std::sqrt(all[3] * all[3] + all[4] * all[4]) / n;
+  vector[PX] = all[SUM_PX] / n;
+  vector[PY] = all[SUM_PY] / n;
+  vector[AXIS_Z_MEAN] = all[SUM_AXIS_Z] / n;
+  vector[POLAR] = std::hypot(vector[PX], vector[PY]);
+  vector[NEMATIC] = std::hypot(all[SUM_COS2], all[SUM_SIN2]) / n;
 }
 
-// One row per rod counted on this rank: id, centre of mass, axis, velocity.
+// One row per rod counted on this rank: id, centre of mass, polar axis, axis z, velocity.
 void ComputePolarRod::compute_local()
 {
   invoked_local = update->ntimestep;
@@ -94,7 +97,9 @@ void ComputePolarRod::compute_local()
     rod.body.com.store(com);
     domain->remap(com);
     r[X] = com[0]; r[Y] = com[1]; r[Z] = com[2];
-    rod.axis.store(&r[AXIS_X]);
+    r[POLAR_X] = rod.polar.x;
+    r[POLAR_Y] = rod.polar.y;
+    r[AXIS_Z] = rod.axis.z;
     rod.body.v.store(&r[VX]);
   }
   size_local_rows = rows;

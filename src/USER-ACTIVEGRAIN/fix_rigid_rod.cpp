@@ -26,6 +26,9 @@ namespace {
 enum { STATE_ID, STATE_INVMASS, STATE_OFFSET, STATE_INVI = STATE_OFFSET + 3, STATE_V = STATE_INVI + 6,
        STATE_OMEGA = STATE_V + 3, NSTATE = STATE_OMEGA + 3 };
 enum { SUM_VEC, SUM_NTAIL = 3, SUM_NNOSE, NSUM };
+// Columns of the per-atom output (f_ID[1] .. f_ID[4]): the rod's 3-D axis (body x, tail to
+// nose), then its body ID, which tells rods apart in dumps whatever the molecule IDs say.
+enum { OUT_AXIS, OUT_BODY = OUT_AXIS + 3, NOUT };
 
 Vec3 v3(const double *a) { return Vec3(a); }
 }    // namespace
@@ -67,7 +70,7 @@ FixRigidRod::FixRigidRod(LAMMPS *lmp, int narg, char **arg) : FixRigidSmall(lmp,
                rod->id);
 
   peratom_flag = 1;
-  size_peratom_cols = 3;
+  size_peratom_cols = NOUT;
   peratom_freq = 1;
   grow_arrays(atom->nmax);
 }
@@ -75,7 +78,7 @@ FixRigidRod::FixRigidRod(LAMMPS *lmp, int narg, char **arg) : FixRigidSmall(lmp,
 FixRigidRod::~FixRigidRod() noexcept
 {
   memory->destroy(state);
-  memory->destroy(polar);
+  memory->destroy(output);
   memory->destroy(polar_sum);
 }
 
@@ -216,7 +219,7 @@ void FixRigidRod::fill_body_state()
     double *s = state[i];
     if (atom2body[i] < 0) {
       s[STATE_ID] = 0.0;
-      polar[i][0] = polar[i][1] = polar[i][2] = 0.0;
+      for (int k = 0; k < NOUT; ++k) output[i][k] = 0.0;
       continue;
     }
     const Body &b = body[atom2body[i]];
@@ -241,8 +244,9 @@ void FixRigidRod::fill_body_state()
     for (int k = 0; k < 3; ++k) {
       s[STATE_V + k] = b.vcm[k];
       s[STATE_OMEGA + k] = b.omega[k];
-      polar[i][k] = b.ex_space[k];
+      output[i][OUT_AXIS + k] = b.ex_space[k];
     }
+    output[i][OUT_BODY] = static_cast<double>(bodytag[i]);
   }
   rod_comm = RodComm::STATE;
   comm->forward_comm(this, NSTATE);
@@ -268,13 +272,13 @@ void FixRigidRod::grow_arrays(int nmax)
   FixRigidSmall::grow_arrays(nmax);
   if (nmax <= nmax_atom) return;
   memory->grow(state, nmax, NSTATE, "rigid/rod:state");
-  memory->grow(polar, nmax, 3, "rigid/rod:polar");
+  memory->grow(output, nmax, NOUT, "rigid/rod:output");
   for (int i = nmax_atom; i < nmax; ++i) {
     state[i][STATE_ID] = 0.0;
-    polar[i][0] = polar[i][1] = polar[i][2] = 0.0;
+    for (int k = 0; k < NOUT; ++k) output[i][k] = 0.0;
   }
   nmax_atom = nmax;
-  array_atom = polar;
+  array_atom = output;
 }
 
 int FixRigidRod::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
@@ -319,14 +323,14 @@ void FixRigidRod::unpack_reverse_comm(int n, int *list, double *buf)
 
 void *FixRigidRod::extract(const char *name, int &dim)
 {
-  if (strcmp(name, "polar") == 0) {
+  if (strcmp(name, "polar") == 0) {    // the per-atom output, the polar axis first
     dim = 2;
-    return polar;
+    return output;
   }
   return FixRigidSmall::extract(name, dim);
 }
 
 double FixRigidRod::memory_usage()
 {
-  return FixRigidSmall::memory_usage() + (double) nmax_atom * (NSTATE + 3) * sizeof(double);
+  return FixRigidSmall::memory_usage() + (double) nmax_atom * (NSTATE + NOUT) * sizeof(double);
 }

@@ -34,7 +34,7 @@ class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
   int tail_type = 0, nose_type = 0;                           // from the template's end atoms
   double inertia_axial = 0.0, inertia_transverse = 0.0;       // of the solid rod
   double **state = nullptr;        // per atom (owned + ghost): see STATE_* in the .cpp
-  double **polar = nullptr;        // per owned atom: its rod's polar axis (world frame), else 0
+  double **output = nullptr;       // per owned atom: its rod's polar axis and body ID, else 0 (OUT_*)
   double **polar_sum = nullptr;    // per body, during setup: sum of nose - tail offsets, counts
   int nmax_atom = 0;
 

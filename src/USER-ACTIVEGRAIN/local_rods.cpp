@@ -52,7 +52,7 @@ void LocalRods::update(int groupbit)
     if (found == index_of_body.end()) {
       index_of_body[body_id] = (int) rods_.size();
       rod_of_atom_[i] = (int) rods_.size();
-      rods_.push_back({body_id, false, body, Vec3(), 0.0});
+      rods_.push_back({body_id, false, body, Vec3(), Vec3(), 0.0});
       reference.push_back(i);
     } else {
       rod_of_atom_[i] = found->second;
@@ -86,6 +86,7 @@ void LocalRods::update(int groupbit)
       return (i >= 0 && i < nlocal) ? i : -1;
     };
     rods_[r].axis = chain.axis;
+    rods_[r].polar = chain.polar;
     rods_[r].counted_here = owned(lowest) >= 0;
     rods_[r].area = 0.0;
     for (std::size_t k = 0; k < atoms.size(); ++k) {

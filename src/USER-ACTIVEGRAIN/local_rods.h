@@ -19,7 +19,8 @@ class LocalRods : protected Pointers {
     tagint id;                       // body ID, the same on every rank
     bool counted_here;               // this rank owns the rod's lowest-tag atom: count it once
     ActiveGrain::RigidBodyState body;
-    ActiveGrain::Vec3 axis;          // tail to nose
+    ActiveGrain::Vec3 axis;          // unit 3-D axis, tail to nose
+    ActiveGrain::Vec3 polar;         // polar axis p: the in-plane direction of axis, unit length
     double area;                     // projected area of the whole rod
   };
 

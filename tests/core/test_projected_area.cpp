@@ -146,5 +146,22 @@ TEST(RodChain, UntaperedChainHasNoPolarAxis)
   using ActiveGrain::Vec3;
   auto rod = ActiveGrain::project_rod_chain({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.5});
   EXPECT_EQ(norm2(rod.axis), 0.0);
+  EXPECT_EQ(norm2(rod.polar), 0.0);
   EXPECT_GT(total(rod.shares), M_PI * 0.25);
+}
+
+// The polarization seen from above: a tilted rod's polar axis is its in-plane direction, of
+// unit length whatever the tilt (the 3-D axis keeps the tilt).
+TEST(RodChain, PolarAxisIsTheUnitInPlaneDirection)
+{
+  using ActiveGrain::Vec3;
+  const double tilt = 0.2, heading = -2.4;
+  const Vec3 along(std::cos(tilt) * std::cos(heading), std::cos(tilt) * std::sin(heading), std::sin(tilt));
+  std::vector<Vec3> x;
+  for (int k = 0; k < 4; ++k) x.push_back(Vec3(3, -1, 0.5) + along * (0.4 * k));
+  auto rod = ActiveGrain::project_rod_chain(x, {0.55, 0.5, 0.45, 0.35});
+  EXPECT_NEAR(rod.polar.x, std::cos(heading), 1e-12);
+  EXPECT_NEAR(rod.polar.y, std::sin(heading), 1e-12);
+  EXPECT_EQ(rod.polar.z, 0.0);
+  EXPECT_NEAR(rod.axis.z, std::sin(tilt), 1e-12);
 }

@@ -94,3 +94,31 @@ def test_run_completes_without_losing_atoms(outputs, name, ranks):
 @pytest.mark.parametrize("name", sorted(DECKS))
 def test_same_system_on_1_and_2_ranks(outputs, name):
     assert setup_report(outputs(name, 1), name) == setup_report(outputs(name, 2), name)
+
+
+# Beads given a rod's molecule ID after creation, as LAMMPS left them on 2 ranks (issue 9). The
+# rigid fix is replaced around `set`: LAMMPS 4Jul2026's set command crashes on a rigid fix that
+# has been set up (it checks the atoms it is about to select before selecting them).
+CHECK_DECK = """variable geometry index channel
+variable Lx index 30e-3
+variable Ly index 10e-3
+variable phi_b index 0.7
+include in.create
+unfix rodsfix
+set group beads mol 1
+fix rodsfix rods rigid/rod molecule mol rod
+run 0 post no
+include in.check-rods
+"""
+
+
+def test_creation_check_stops_on_beads_with_a_rod_molecule_id(tmp_path):
+    """in.check-rods, which in.create runs, stops with an ERROR when beads carry a rod's ID."""
+    deck = tmp_path / "in.corrupt"
+    deck.write_text(CHECK_DECK)
+    done = subprocess.run([LMP, "-in", str(deck), "-var", "out", str(tmp_path), "-log", "none"],
+                          cwd=EXAMPLES / "rods-and-beads", capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    assert "ERROR: in.check-rods:" in done.stdout and "have a molecule ID but are in no rod" in done.stdout, \
+        done.stdout[-2000:]
+    assert done.stdout.count("ERROR") == 1    # the creation itself passed the check

@@ -1,7 +1,7 @@
 // fix rigid/rod on 1, 2 and 4 ranks with a rod straddling periodic and sub-domain boundaries:
 // the body state it gives contact styles (owned and ghost atoms) is the rod's, with the solid's
 // mass and inertia; a free rod (no walls, no gravity, its own spheres never collide) keeps its linear and angular momentum; the polar axis points from
-// the tail atom to the nose atom and survives a restart.
+// the tail atom to the nose atom and survives a restart; every atom of the rod outputs its body ID.
 #include "lammps_fixture.h"
 #include "rod_deck.h"
 
@@ -12,6 +12,7 @@
 #include "modify.h"
 #include "rigid_body_provider.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -182,6 +183,33 @@ TEST_F(RigidRodTest, PolarAxisPointsTailToNose)
   for (int i = 0; i < lmp->atom->nlocal; ++i) EXPECT_NEAR(ActiveGrain::norm(Vec3(p[i]) - polar), 0.0, 1e-12);
   // Per-atom output (dumps, computes) is the same array.
   EXPECT_EQ(lmp->modify->get_fix_by_id("r")->array_atom, p);
+}
+
+TEST_F(RigidRodTest, PerAtomBodyIdIsTheRodsOnEveryRank)
+{
+  make_rod();
+  auto *fix = lmp->modify->get_fix_by_id("r");
+  ASSERT_EQ(fix->size_peratom_cols, 4);
+  double body_min = 1e300, body_max = -1e300;
+  int rod_atoms_here = 0;
+  for (int i = 0; i < lmp->atom->nlocal; ++i) {
+    const double id = fix->array_atom[i][3];
+    RigidBodyState b;
+    LAMMPS_NS::tagint body_id = 0;
+    ASSERT_TRUE(provider()->body_of_atom(i, b, body_id));
+    EXPECT_EQ(id, static_cast<double>(body_id));
+    body_min = std::min(body_min, id);
+    body_max = std::max(body_max, id);
+    ++rod_atoms_here;
+  }
+  double all_min = 0, all_max = 0;
+  int all_rod_atoms = 0;
+  MPI_Allreduce(&body_min, &all_min, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&body_max, &all_max, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(&rod_atoms_here, &all_rod_atoms, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_EQ(all_rod_atoms, SPHERES);
+  EXPECT_GE(all_min, 1.0);    // one body ID, an atom ID of the rod, on every rank
+  EXPECT_EQ(all_min, all_max);
 }
 
 TEST_F(RigidRodTest, ReversedTaperKeepsTailToNoseAxis)

@@ -11,7 +11,8 @@ class RodsAndBeadsTest : public LammpsTest {
   void create(const std::string &vars, double phi_b, double phi_r)
   {
     command(vars + "\nvariable out index test_rods_and_beads_out\n"
-                   "include " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads/in.create\n"
+                   "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
+                   "include ${create_dir}/in.create\n"
                    "run 0 post no");
     EXPECT_NEAR(value("v_phi_b_reached"), phi_b, 0.005);
     EXPECT_NEAR(value("v_phi_r_reached"), phi_r, 0.005);

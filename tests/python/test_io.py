@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from activegrain import read_dump, read_frame, write_dump, geometry_from_box, Box
+from activegrain.io import to_universe
 from activegrain import synthetic as S
 from activegrain.geometry import Channel, PeriodicBox, Rectangle, Annulus
 
@@ -27,8 +28,8 @@ def test_round_trip_with_units_and_velocities(tmp_path):
     ref = frames[1].scaled(1e3)
     assert np.array_equal(back[1].mol, ref.mol)
     assert np.allclose(back[1].radius, ref.radius)
-    assert np.allclose(back[1].pos, ref.pos, atol=1e-4)  # MDAnalysis stores float32
-    assert np.allclose(back[1].vel, ref.vel, atol=1e-4)
+    assert np.allclose(back[1].pos, ref.pos, atol=1e-9)
+    assert np.allclose(back[1].vel, ref.vel, atol=1e-9)
     rods = back[1].rods()
     assert np.allclose(rods.axis, axes, atol=1e-5)
     assert isinstance(geometry_from_box(back[0].box), Channel)
@@ -110,3 +111,37 @@ def test_to_ase_keeps_cell_and_molecules():
     assert np.allclose(atoms.cell.lengths(), (30, 10, 1.12))
     assert list(atoms.pbc) == [True, False, False]
     assert np.array_equal(atoms.get_array("mol"), fr.mol)
+
+
+def test_body_column_and_full_precision(tmp_path):
+    box = S.channel_box(40, 10)
+    fr = S.make_frame(box, [(3.0, 2.0)], 0.5, [(20.123456789012, 5.0)], [(np.cos(0.3), np.sin(0.3))])
+    fr.body = np.where(fr.mol > 0, 77, 0)
+    fr = fr.scaled(1e-3)
+    path = tmp_path / "body.dump"
+    write_dump(path, [fr])
+    assert "ITEM: ATOMS id mol type radius x y z body" in path.read_text()
+    back = read_frame(str(path))
+    assert np.array_equal(back.body, fr.body)
+    np.testing.assert_allclose(back.pos, fr.pos, rtol=1e-11, atol=1e-15)   # double precision
+    assert back.rods().ids.tolist() == [77]
+
+
+def test_frames_as_an_mdanalysis_universe():
+    """Rods become residues (resid = rod ID), beads residues of their own; positions per frame."""
+    rng = np.random.default_rng(3)
+    box = S.channel_box(40, 10)
+    beads = S.lattice_beads(0, 40, 0, 10, 2.0)
+    centres, axes = S.random_rods(3, (5, 35, 3, 7), rng)
+    frames = [S.make_frame(box, beads, 0.5, centres + shift, axes, step=100 * k)
+              for k, shift in enumerate((0.0, 0.5))]
+    u = to_universe(frames)
+    rods = frames[0].rods()
+    assert u.atoms.n_atoms == len(frames[0].ids)
+    assert len(u.select_atoms("resname ROD").residues) == len(rods.ids) == 3
+    assert len(u.select_atoms("resname BEAD").residues) == int(np.sum(frames[0].is_bead))
+    assert sorted(u.select_atoms("resname ROD").residues.resids) == sorted(rods.ids)
+    assert u.trajectory.n_frames == 2
+    u.trajectory[1]
+    assert np.allclose(u.atoms.positions, frames[1].pos - frames[1].box.lo, atol=1e-4)
+    assert np.allclose(u.dimensions[:3], frames[1].box.lengths)

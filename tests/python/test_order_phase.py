@@ -27,6 +27,13 @@ def test_aligned_rods_have_full_polarization_random_rods_none():
     axes = np.tile([1.0, 0.0], (100, 1))
     axes[::2] *= -1
     assert A.polarization(_rods_frame(axes, rng))["P"] == pytest.approx(0.0, abs=1e-12)
+    assert A.polarization(_rods_frame(axes, rng))["S"] == pytest.approx(1.0)
+
+
+def test_nematic_order_of_known_sets():
+    assert A.nematic_order([(1, 0), (-1, 0), (0, 0)]) == pytest.approx(1.0)      # zero vector skipped
+    assert A.nematic_order([(1, 0), (0, 1)]) == pytest.approx(0.0, abs=1e-12)     # perpendicular axes
+    assert A.nematic_order([(1, 0), (1, 1)]) == pytest.approx(np.cos(np.pi / 4))  # 45 degrees apart
 
 
 def test_velocity_order_and_tangential_polarization():

@@ -5,7 +5,7 @@ from scipy.integrate import quad
 
 from activegrain import analysis as A, synthetic as S
 from activegrain.geometry import Annulus, Box, geometry_from_box
-from activegrain.rods import chain_halfwidth
+from activegrain.rods import chain_area, chain_area_shares, chain_halfwidth
 
 
 def test_lattice_gives_its_area_fraction_in_every_bin():
@@ -92,3 +92,27 @@ def test_bad_species_rejected():
         A.area_fraction_profile(fr, geometry_from_box(fr.box), "x", 5, "grains")
     with pytest.raises(ValueError, match="coordinate"):
         A.area_fraction_profile(fr, geometry_from_box(fr.box), "r", 5)
+
+
+def test_centre_count_puts_each_atom_area_in_its_centre_bin():
+    box = S.channel_box(20, 10)
+    geom = geometry_from_box(box)
+    # a bead across the edge x = 5 with its centre left of it; a rod across x = 10
+    fr = S.make_frame(box, [(4.8, 2.0)], 0.5, [(10.3, 6.0)], [(1, 0)])
+    edges = np.arange(0.0, 20.1, 5.0)
+    centre = A.area_fraction_profile(fr, geom, "x", edges, "all", count="centre")
+    covered = A.area_fraction_profile(fr, geom, "x", edges, "beads")
+    bin_area = 5.0 * 10.0
+    bead, rod = np.pi * 0.25, chain_area(*S.rod_spheres())
+    assert centre.fraction[0] * bin_area == pytest.approx(bead, rel=1e-12)          # whole disc left
+    assert 0 < covered.fraction[1] * bin_area < bead                                  # part of it right
+    assert centre.fraction.sum() * bin_area == pytest.approx(bead + rod, rel=1e-12)
+    s, r = S.rod_spheres()
+    left = chain_area_shares(s, r)[10.3 + s < 10].sum()
+    assert centre.fraction[1] * bin_area == pytest.approx(left, rel=1e-12)
+    # bins much larger than the particles: both counts agree
+    one = [0.0, 20.0]
+    assert A.area_fraction_profile(fr, geom, "x", one, "all", count="centre").fraction == \
+        pytest.approx(A.area_fraction_profile(fr, geom, "x", one, "all").fraction, rel=1e-12)
+    with pytest.raises(ValueError, match="count"):
+        A.area_fraction_profile(fr, geom, "x", edges, "all", count="bins")

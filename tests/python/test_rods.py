@@ -5,7 +5,8 @@ from scipy.integrate import quad
 
 from activegrain import synthetic as S
 from activegrain.geometry import Box
-from activegrain.rods import chain_area, chain_halfwidth, chain_samples, disc_samples
+from activegrain.io import Frame
+from activegrain.rods import chain_area, chain_area_shares, chain_halfwidth, chain_samples, disc_samples
 
 
 def lens_union(r, d):
@@ -85,3 +86,75 @@ def test_axis_from_shuffled_spheres_with_equal_tail_radii():
     rods = fr.rods()
     assert np.allclose(rods.axis[0], p, atol=1e-12)
     assert np.allclose(box.minimum_image(rods.tail[0] - (np.array([29.5, 0.2]) - 2.0 * p)), 0, atol=1e-9)
+
+
+def power_cell_shares(c, r):
+    """Reference split of a disc chain: disc k's part inside its power-diagram cell, the
+    slab between radical lines, integrated numerically (compute areafrac/chunk's rule)."""
+    out = []
+    for k in range(len(c)):
+        lo, hi = -np.inf, np.inf
+        for j in range(len(c)):
+            if j != k:
+                radical = 0.5 * (c[k] + c[j]) + 0.5 * (r[j] ** 2 - r[k] ** 2) / (c[k] - c[j])
+                lo, hi = (max(lo, radical), hi) if c[k] > c[j] else (lo, min(hi, radical))
+        a, b = max(lo, c[k] - r[k]), min(hi, c[k] + r[k])
+        out.append(quad(lambda x: 2 * np.sqrt(max(r[k] ** 2 - (x - c[k]) ** 2, 0)), a, b)[0] if b > a else 0.0)
+    return np.array(out)
+
+
+def test_chain_area_shares_are_the_power_diagram_cells():
+    s, r = S.rod_spheres(n_spheres=9)
+    shares = chain_area_shares(s, r)
+    assert shares.sum() == pytest.approx(chain_area(s, r), rel=1e-12)
+    np.testing.assert_allclose(shares, power_cell_shares(s, r), rtol=1e-9)
+    rng = np.random.default_rng(5)
+    c, rr = np.sort(rng.uniform(0, 3, 6)), rng.uniform(0.3, 0.8, 6)
+    np.testing.assert_allclose(chain_area_shares(c, rr), power_cell_shares(c, rr), rtol=1e-8, atol=1e-12)
+
+
+def _with(frame, **changes):
+    fields = {k: getattr(frame, k) for k in ("step", "time", "box", "ids", "mol", "types", "radius", "pos", "vel", "body")}
+    fields.update(changes)
+    return Frame(**fields)
+
+
+def test_rods_are_told_apart_by_body_not_by_stale_molecule_ids():
+    box = Box((0.0, 0.0, 0.0), (40.0, 12.0, 1.12), (True, False, False))
+    fr = S.make_frame(box, [(5, 3), (30, 9), (31, 9)], 0.5, [(10, 6), (20, 6)], [(1, 0), (0, 1)])
+    body = np.where(fr.mol > 0, 100 + fr.mol, 0)   # body IDs differ from molecule IDs
+    mol = fr.mol.copy()
+    mol[1:3] = 2                                  # two beads far away carry rod 2's molecule ID
+    stale = _with(fr, mol=mol)
+    with pytest.raises(ValueError, match=r"rod 2 \(mol 2: atoms 2, 3, 11, .*\) is not one chain"):
+        stale.rods()
+    rods = _with(stale, body=body).rods()
+    assert rods.ids.tolist() == [101, 102]
+    np.testing.assert_allclose(rods.axis, [(1, 0), (0, 1)], atol=1e-12)
+    assert len(_with(stale, body=body).beads()[1]) == 3
+
+
+@pytest.mark.parametrize("defect, message", [("off_line", "not on one line"), ("gap", "a gap of"),
+                                             ("bump", "radii do not shrink")])
+def test_a_rod_that_is_not_one_chain_is_an_error(defect, message):
+    box = Box((0.0, 0.0, 0.0), (30.0, 30.0, 1.12), (True, True, False))
+    fr = S.make_frame(box, [], 0.5, [(10, 10), (20, 20)], [(1, 0), (0, 1)])
+    pos, radius = fr.pos.copy(), fr.radius.copy()
+    k = 3 + len(S.rod_spheres()[0])       # the fourth sphere of the second rod
+    if defect == "off_line":
+        pos[k, 0] += 0.1
+    elif defect == "gap":
+        pos[k + 1:, 1] += 1.5                 # the nose half slides away along the axis
+    else:
+        radius[k] = 0.6
+    with pytest.raises(ValueError, match=f"rod 2 .*{message}"):
+        _with(fr, pos=pos, radius=radius).rods()
+
+
+def test_sphere_areas_are_the_rod_split_at_the_sphere_centres():
+    box = Box((0.0, 0.0, 0.0), (30.0, 30.0, 1.12), (True, True, False))
+    fr = S.make_frame(box, [], 0.5, [(0.5, 10)], [(1, 0)])   # across the periodic boundary
+    xy, area = fr.rods().sphere_areas()
+    s, r = S.rod_spheres()
+    np.testing.assert_allclose(area, chain_area_shares(s, r), rtol=1e-12)
+    np.testing.assert_allclose(xy, box.wrap(np.column_stack([0.5 + s, np.full(len(s), 10.0)])), atol=1e-12)
