@@ -16,6 +16,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include "ag_hash.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -30,12 +32,15 @@ static const char *const STYLE = "Fix wall/impulse";
 static constexpr double MIN_STEPS_PER_PERIOD = 20.0;
 // Warn when the plates move more than this fraction of the gap in one step.
 static constexpr double MAX_STEP_TRAVEL = 0.01;
+// Roughness is a small tilt of the contact normal (the slope is evaluated under the sphere's
+// centre, not at its true foot point): keep it small.
+static constexpr double MAX_ROUGH_SLOPE = 0.3;
 
 /* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
-       [vibrate A F PHASE] [type T E MU] */
+       [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), ImpulseWall(NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
-    lid(Lid::NONE), materials(lmp, STYLE)
+    lid(Lid::NONE), rough_slope(0.0), rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
     error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);
@@ -69,6 +74,16 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
       if (amplitude < 0.0 || frequency < 0.0)
         error->all(FLERR, "{}: vibration amplitude and frequency must be >= 0", STYLE);
       iarg += 4;
+    } else if (key == "rough") {
+      if (iarg + 4 > narg) error->all(FLERR, "{}: rough needs rms slope, correlation length, seed", STYLE);
+      rough_slope = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      rough_length = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      rough_seed = utils::inumeric(FLERR, arg[iarg + 3], false, lmp);
+      if (rough_slope < 0.0 || rough_slope > MAX_ROUGH_SLOPE)
+        error->all(FLERR, "{}: rough rms slope {} must be in [0, {}]", STYLE, rough_slope, MAX_ROUGH_SLOPE);
+      if (rough_length <= 0.0) error->all(FLERR, "{}: rough correlation length must be > 0", STYLE);
+      if (rough_seed <= 0) error->all(FLERR, "{}: rough seed must be a positive integer", STYLE);
+      iarg += 4;
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
@@ -96,6 +111,14 @@ int FixWallImpulse::setmask()
 void FixWallImpulse::init()
 {
   check_wall_host(lmp, STYLE);
+  // Periodic directions get a lattice commensurate with the box (made here: the box may change
+  // between runs); the lid's surface is another frozen field of the same statistics.
+  const double period_x = domain->xperiodic ? domain->xprd : 0.0;
+  const double period_y = domain->yperiodic ? domain->yprd : 0.0;
+  for (int s : {BASE, LID})
+    surface[s] = ActiveGrain::RoughSurface(rough_slope, rough_length,
+                                           ActiveGrain::hash_words({(std::uint64_t) rough_seed, (std::uint64_t) s}),
+                                           period_x, period_y);
   const double dt = update->dt;
   if (amplitude > 0.0 && frequency > 0.0) {
     const double steps_per_period = 1.0 / (frequency * dt);
@@ -141,16 +164,24 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) {
     if (!atoms[i] || !(mask[i] & groupbit)) continue;
+    const Vec3 centre(x[i]);
     const double r = radius[i];
-    const double base_gap = x[i][2] - r - zb;
+    // The plate's tangent plane under the sphere: through the surface point above (below) the
+    // centre, normal tilted by the local slope. The gap is the centre's distance from that plane
+    // less the radius.
+    const ActiveGrain::SurfacePoint below = surface[BASE].at(centre.x, centre.y);
+    const Vec3 n_base = below.normal_up();
+    const double base_gap = (centre.z - zb - below.height) * n_base.z - r;
     if (base_gap < reach)
-      contacts.push_back({i, BASE, Vec3(0, 0, 1), Vec3(x[i][0], x[i][1], x[i][2] - r), base_gap,
-                          Vec3(0, 0, vb), materials.of_type(type[i])});
+      contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb),
+                          materials.of_type(type[i])});
     if (lid == Lid::NONE) continue;
-    const double lid_gap = zlid - (x[i][2] + r);
+    const ActiveGrain::SurfacePoint above = surface[LID].at(centre.x, centre.y);
+    const Vec3 n_lid = -above.normal_up();
+    const double lid_gap = (zlid + above.height - centre.z) * -n_lid.z - r;
     if (lid_gap < reach)
-      contacts.push_back({i, LID, Vec3(0, 0, -1), Vec3(x[i][0], x[i][1], x[i][2] + r), lid_gap,
-                          Vec3(0, 0, vlid), materials.of_type(type[i])});
+      contacts.push_back({i, LID, n_lid, centre - n_lid * r, lid_gap, Vec3(0, 0, vlid),
+                          materials.of_type(type[i])});
   }
 }
 

@@ -10,6 +10,7 @@ FixStyle(wall/impulse,FixWallImpulse);
 #ifndef LMP_FIX_WALL_IMPULSE_H
 #define LMP_FIX_WALL_IMPULSE_H
 
+#include "ag_rough_surface.h"
 #include "fix.h"
 #include "impulse_wall.h"
 
@@ -38,6 +39,11 @@ class FixWallImpulse : public Fix, public ImpulseWall {
 
   double z0, gap, amplitude, frequency, phase;
   Lid lid;
+  // Frozen roughness of each plate (flat unless keyword rough): rms slope, correlation length and
+  // seed as given; the surfaces are made in init(), when the box is known.
+  double rough_slope, rough_length;
+  int rough_seed;
+  ActiveGrain::RoughSurface surface[NUM_SURFACES];
   WallMaterials materials;
 };
 

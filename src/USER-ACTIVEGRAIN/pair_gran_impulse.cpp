@@ -8,6 +8,8 @@
 
 #include "pair_gran_impulse.h"
 
+#include "ag_hash.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -43,15 +45,6 @@ static constexpr int DEFAULT_MAX_SWEEPS = 10000;
 static constexpr double DEFAULT_TOLERANCE = 1.0e-8;
 static constexpr double DEFAULT_BETA = 0.2;
 static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
-
-// splitmix64's finalizer: a well-mixed 64-bit hash, for the contacts' solve order.
-static std::uint64_t mix(std::uint64_t z)
-{
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), max_sweeps(DEFAULT_MAX_SWEEPS), tolerance(DEFAULT_TOLERANCE), beta(DEFAULT_BETA),
@@ -352,11 +345,11 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
       atoms.wall ? static_cast<int>(std::find(walls.begin(), walls.end(), atoms.wall) - walls.begin()) : -1;
   const tagint tag1 = atoms.atom1 >= 0 ? tag[atoms.atom1] : 0, tag2 = tag[atoms.atom2];
   const ContactIdentity identity(wall_index, atoms.surface, std::min(tag1, tag2), std::max(tag1, tag2));
-  std::uint64_t shuffle = mix(static_cast<std::uint64_t>(update->ntimestep));
-  for (const std::uint64_t part :
-       {static_cast<std::uint64_t>(wall_index + 1), static_cast<std::uint64_t>(atoms.surface),
-        static_cast<std::uint64_t>(std::get<2>(identity)), static_cast<std::uint64_t>(std::get<3>(identity))})
-    shuffle = mix(shuffle ^ part);
+  // The shuffled order: a hash of the step and the contact's identity, the same on any rank.
+  const std::uint64_t shuffle = ActiveGrain::hash_words(
+      {static_cast<std::uint64_t>(update->ntimestep), static_cast<std::uint64_t>(wall_index + 1),
+       static_cast<std::uint64_t>(atoms.surface), static_cast<std::uint64_t>(std::get<2>(identity)),
+       static_cast<std::uint64_t>(std::get<3>(identity))});
   found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, atoms});
   largest_overlap = std::max(largest_overlap, -gap);
 }

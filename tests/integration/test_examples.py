@@ -122,3 +122,57 @@ def test_creation_check_stops_on_beads_with_a_rod_molecule_id(tmp_path):
     assert "ERROR: in.check-rods:" in done.stdout and "have a molecule ID but are in no rod" in done.stdout, \
         done.stdout[-2000:]
     assert done.stdout.count("ERROR") == 1    # the creation itself passed the check
+
+
+POLYDISPERSE_DECK = """variable geometry index channel
+variable Lx index 30e-3
+variable Ly index 10e-3
+variable phi_b index 0.6
+variable phi_r index 0.02
+include in.create
+variable spread atom (2*radius/${d}-1)^2
+variable mass_error atom abs(mass/(2700*PI/6*(2*radius)^3)-1)
+compute spread beads reduce sum v_spread
+compute mass_error beads reduce max v_mass_error
+thermo_style custom step c_spread c_mass_error
+run 0 post no
+print "polydispersity $(sqrt(c_spread/count(beads)):%.6f) mass error $(c_mass_error:%.3g)"
+write_dump beads custom ${out}/beads.dump x y radius modify format float %.15g
+"""
+
+
+def polydisperse(out, ranks, polydisp):
+    deck = out / "in.polydisperse"
+    deck.write_text(POLYDISPERSE_DECK)
+    return subprocess.run([*mpi_prefix(ranks), LMP, "-in", str(deck), "-var", "out", str(out),
+                           "-var", "polydisp", str(polydisp), "-log", "none"],
+                          cwd=EXAMPLES / "rods-and-beads", capture_output=True, text=True, timeout=120)
+
+
+def test_polydisperse_beads_have_the_asked_spread_and_masses_on_any_number_of_ranks(tmp_path):
+    """-var polydisp 0.05: bead diameters spread by 5 % rms, masses follow them, and a lattice site
+    gets the same bead on 1 and 2 ranks (sizes are hashed from the site, not drawn per rank)."""
+    radius_at_site = []
+    for ranks in (1, 2):
+        out = tmp_path / f"np{ranks}"
+        out.mkdir()
+        done = polydisperse(out, ranks, 0.05)
+        assert done.returncode == 0 and "ERROR" not in done.stdout, done.stdout[-2000:]
+        m = re.search(r"polydispersity ([\d.]+) mass error (\S+)", done.stdout)
+        assert m, done.stdout[-2000:]
+        assert abs(float(m.group(1)) - 0.05) < 0.005
+        assert float(m.group(2)) < 1e-12
+        rows = (out / "beads.dump").read_text().splitlines()[9:]
+        radius_at_site.append({(round(float(x), 9), round(float(y), 9)): float(r)
+                               for x, y, r in (row.split() for row in rows)})
+    # Ranks delete different random beads to hit the count; the beads both keep are equal.
+    common = radius_at_site[0].keys() & radius_at_site[1].keys()
+    assert len(common) > 150
+    assert all(radius_at_site[0][site] == radius_at_site[1][site] for site in common)
+
+
+@pytest.mark.parametrize("polydisp", [-0.01, 0.3])
+def test_polydispersity_out_of_range_is_an_error(tmp_path, polydisp):
+    done = polydisperse(tmp_path, 1, polydisp)
+    assert done.returncode == 1
+    assert f"ERROR: in.create: polydisp {polydisp} must be in [0, 0.3)" in done.stdout, done.stdout[-2000:]

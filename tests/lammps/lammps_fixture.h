@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,6 +44,28 @@ class LammpsTest : public ::testing::Test {
       return e.what();
     }
     return "";
+  }
+
+  // What `measure` returns (n values) from a LAMMPS of rank 0 alone (MPI_COMM_SELF), on every
+  // rank: the serial reference of a test that then runs on all ranks. The fixture's instance is
+  // closed meanwhile (plugins are registered once per process) and opened again afterwards.
+  std::vector<double> serial_reference(int n, const std::function<std::vector<double>(LAMMPS_NS::LAMMPS *)> &measure)
+  {
+    int me = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &me);
+    std::vector<double> result(n, 0.0);
+    TearDown();
+    if (me == 0) {
+      std::vector<const char *> args = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
+      auto alone = std::make_unique<LAMMPS_NS::LAMMPS>((int) args.size(), const_cast<char **>(args.data()),
+                                                       MPI_COMM_SELF);
+      lammps_command(alone.get(), "plugin load " ACTIVEGRAIN_PLUGIN_FILE);
+      result = measure(alone.get());
+      result.resize(n, 0.0);
+    }
+    SetUp();
+    MPI_Bcast(result.data(), n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    return result;
   }
 
   // Value of an equal-style expression, e.g. value("vx[3]") or value("v_rod_area").
