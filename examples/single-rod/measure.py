@@ -3,6 +3,7 @@
 Runs in.single-rod (4 rods far apart per run, several seeds) and prints mean and spread of the
 speed along the rods' own axes. Long: minutes. Usage, from this folder:
     python3 measure.py [dt|friction|restitution|drive|spheres|ranks|order|all] [--lmp PATH] [--seeds N]
+                       [--coupled stronge|projection]
 """
 import argparse
 import os
@@ -14,13 +15,17 @@ import numpy as np
 import rodtrack
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# pair gran/impulse's law of coupled contacts and its sweep settings, for every run (--coupled).
+SOLVER = {"stronge": {"coupled": "stronge", "sweeps": 8, "tolerance": 1e-4},
+          "projection": {"coupled": "projection", "sweeps": 10000, "tolerance": 1e-8}}
+solver = SOLVER["stronge"]
 
 
 def run(lmp, tag, dt=1e-5, time=2.0, np_ranks=1, mpirun="mpirun", **vars_):
     os.makedirs(os.path.join(HERE, "out"), exist_ok=True)
     cmd = [lmp, "-in", "in.single-rod", "-log", "none", "-screen", "none", "-var", "tag", tag,
            "-var", "dt", repr(dt), "-var", "time", repr(time)]
-    for k, v in vars_.items():
+    for k, v in {**solver, **vars_}.items():
         cmd += ["-var", k, str(v)]
     if np_ranks > 1:
         cmd = [mpirun, "--oversubscribe", "-np", str(np_ranks)] + cmd
@@ -50,7 +55,10 @@ def main():
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--time", type=float, default=2.0)
+    ap.add_argument("--coupled", choices=sorted(SOLVER), default="stronge")
     a = ap.parse_args()
+    global solver
+    solver = SOLVER[a.coupled]
     L, S, T = a.lmp, a.seeds, a.time
     what = a.what
     if what in ("dt", "all"):

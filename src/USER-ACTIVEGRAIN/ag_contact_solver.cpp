@@ -118,14 +118,16 @@ void ContactSolver::solve_isolated()
 // island's velocity scale speed: zero exactly when every contact meets its conditions. (The change of the
 // bodies' velocities over a sweep is no measure: while the active contacts ask for more than
 // a rigid motion can give, their impulses drift and the bodies hardly move.)
-double ContactSolver::sweep(const std::vector<int> &island, double speed)
+double ContactSolver::sweep(const std::vector<int> &island, double speed, CoupledLaw law)
 {
   double largest_correction = 0.0;
   for (int i : island) {
     Contact &c = contacts_[i];
     apply(c, -c.impulse);
-    const Vec3 J = coupled_contact_impulse(c.K, c.K_inverse, relative_velocity(c), c.n, c.material,
-                                           c.target_separation);
+    const Vec3 u = relative_velocity(c);
+    const Vec3 J = law == CoupledLaw::PROJECTION
+        ? coupled_contact_impulse(c.K, c.K_inverse, u, c.n, c.material, c.target_separation)
+        : contact_law_impulse(c.K, u, c.n, c.material, c.target_separation);
     largest_correction = std::max(largest_correction, norm(c.K * (J - c.impulse)));
     c.impulse = J;
     apply(c, c.impulse);
@@ -133,7 +135,7 @@ double ContactSolver::sweep(const std::vector<int> &island, double speed)
   return speed > 0.0 ? largest_correction / speed : 0.0;
 }
 
-ContactSolver::Result ContactSolver::solve(int max_sweeps, double tolerance)
+ContactSolver::Result ContactSolver::solve(int max_sweeps, double tolerance, CoupledLaw law)
 {
   prepare();
   solve_isolated();
@@ -145,7 +147,7 @@ ContactSolver::Result ContactSolver::solve(int max_sweeps, double tolerance)
     double residual = 0.0;
     do {
       ++sweeps;
-      residual = sweep(island, speed);
+      residual = sweep(island, speed, law);
     } while (residual > tolerance && sweeps < max_sweeps);
     result.sweeps = std::max(result.sweeps, sweeps);
     result.residual = std::max(result.residual, residual);

@@ -55,10 +55,18 @@ class ContactSolver {
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
                        const ContactMaterial &material, double min_separation = 0.0);
 
+  // How a contact that shares a body with others is updated in the sweeps:
+  //   PROJECTION  coupled_contact_impulse (conditions on the final velocity only): the sweeps
+  //               converge to body velocities independent of their order;
+  //   STRONGE     contact_law_impulse, Stronge's law of an isolated impact: no such fixed point,
+  //               so a fixed number of sweeps gives an order-dependent iterate. It is the law of
+  //               isolated contacts, and the two disagree where slip reverses within an impact.
+  enum class CoupledLaw { PROJECTION, STRONGE };
+
   // Isolated contacts once, then each island of coupled contacts (linked through movable
   // bodies) by at most max_sweeps sweeps in the order the contacts were added, until its
   // residual is at most tolerance. Updates the bodies' velocities.
-  Result solve(int max_sweeps, double tolerance);
+  Result solve(int max_sweeps, double tolerance, CoupledLaw law = CoupledLaw::PROJECTION);
 
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
   int num_contacts() const { return static_cast<int>(contacts_.size()); }
@@ -71,7 +79,7 @@ class ContactSolver {
   void prepare();
   void solve_isolated();
   void find_islands();
-  double sweep(const std::vector<int> &island, double speed);    // returns the residual
+  double sweep(const std::vector<int> &island, double speed, CoupledLaw law);    // returns the residual
 
   Vec3 relative_velocity(const Contact &c) const;
   void apply(const Contact &c, const Vec3 &J);

@@ -107,6 +107,7 @@ class PairGranImpulse : public Pair {
   double tolerance;    // on the residual of the body velocities
   double beta;         // overlaps leave at >= beta * overlap / dt
   Order order;
+  ActiveGrain::ContactSolver::CoupledLaw coupled_law;
 
   double **restitution, **friction;
   double *maxrad;    // largest radius per type (neighbor cutoff)

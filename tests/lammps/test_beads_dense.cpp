@@ -39,7 +39,7 @@ TEST_F(BeadMonolayer, SolverHealthIsReportedThroughComputePair)
   // compute pair gran/impulse reads the solver's global outputs (docs: the layout). A cap of
   // one sweep stops every coupled solve before the tolerance: counted, with a warning.
   load_deck();
-  command("pair_style gran/impulse sweeps 1 tolerance 1e-8\npair_coeff * * 0.3 0.05\n"
+  command("pair_style gran/impulse coupled projection sweeps 1\npair_coeff * * 0.3 0.05\n"
           "compute health all pair gran/impulse\n"
           "thermo_style custom step c_health[*]\nthermo 100\nrun 1000 post no");
   using LAMMPS_NS::PairGranImpulse;
@@ -48,8 +48,8 @@ TEST_F(BeadMonolayer, SolverHealthIsReportedThroughComputePair)
   EXPECT_GT(value("c_health[4]"), 0.0);     // largest overlap
   EXPECT_GT(value("c_health[5]"), 0.0);     // steps stopped at the cap
   EXPECT_EQ(value("c_health[5]"), solver_output(PairGranImpulse::CAPPED_STEPS));
-  // With the default settings (at most 10000 sweeps to 1e-8) the same run converges in
-  // nearly every step.
-  command("pair_style gran/impulse\npair_coeff * * 0.3 0.05\nrun 1000 post no");
+  // With the projection's default settings (at most 10000 sweeps to 1e-8) the same run
+  // converges in nearly every step.
+  command("pair_style gran/impulse coupled projection\npair_coeff * * 0.3 0.05\nrun 1000 post no");
   EXPECT_LT(value("c_health[5]"), 10.0);
 }

@@ -40,15 +40,17 @@ class DensePackingEnergy : public BeadMonolayer {
     return all + rods->extract_ke() + rods->extract_erotational();
   }
 
-  Result run(double beta)
+  Result run(double beta, const std::string &coupled)
   {
     command("atom_modify map array\n"
             "variable geometry index box\nvariable Lx index 24e-3\nvariable Ly index 24e-3\n"
             "variable phi_b index 0.55\nvariable phi_r index 0.10\nvariable amplitude index 0\n"
             "variable seed index 11\nvariable out index test_mpi_energy_out\n"
-            "include " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads/in.create\n"
+            "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
+            "include ${create_dir}/in.create\n"
             "unfix gravity\n"
-            "pair_style gran/impulse beta " + std::to_string(beta) + "\npair_coeff * * 0.3 0.05\n"
+            "pair_style gran/impulse coupled " + coupled + " beta " + std::to_string(beta) +
+            "\npair_coeff * * 0.3 0.05\n"
             // Speeds of a few cm/s: rods run into rods and beads.
             "velocity all create 3e14 4928 dist gaussian\n"
             "thermo 0\ntimestep " + std::to_string(DT) + "\nrun 0 post no");
@@ -65,7 +67,7 @@ class DensePackingEnergy : public BeadMonolayer {
     r.mass = value("mass(all)");
     return r;
   }
-  void report(const char *what, const Result &r)
+  void report(const std::string &what, const Result &r)
   {
     int me = 0, nprocs = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &me);
@@ -73,23 +75,38 @@ class DensePackingEnergy : public BeadMonolayer {
     if (me == 0)
       std::printf("[ measured ] %s, %d ranks: largest kinetic energy rise in a step %.3g J, largest fall %.3g J, "
                   "largest overlap %.3g m\n",
-                  what, nprocs, r.largest_rise, r.largest_fall, r.largest_overlap);
+                  what.c_str(), nprocs, r.largest_rise, r.largest_fall, r.largest_overlap);
   }
 };
 
+// Both laws of coupled contacts (pair_style gran/impulse coupled stronge|projection).
+const char *const COUPLED_LAWS[] = {"stronge", "projection"};
+
 TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithoutOverlapCorrection)
 {
-  const Result r = run(0.0);
-  report("beta 0", r);
-  ASSERT_GT(r.largest_fall, 0.0);    // contacts happened
-  EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall);
+  for (const std::string coupled : COUPLED_LAWS) {
+    if (coupled != COUPLED_LAWS[0]) {
+      TearDown();
+      SetUp();
+    }
+    const Result r = run(0.0, coupled);
+    report("coupled " + coupled + ", beta 0", r);
+    ASSERT_GT(r.largest_fall, 0.0);    // contacts happened
+    EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall) << coupled;
+  }
 }
 
 TEST_F(DensePackingEnergy, OverlapCorrectionAddsAtMostItsMinimumSeparationEnergy)
 {
   const double beta = 0.2;
-  const Result r = run(beta);
-  report("beta 0.2", r);
-  const double push = beta * r.largest_overlap / DT;
-  EXPECT_LE(r.largest_rise, 0.5 * r.mass * push * push + 1e-9 * r.largest_fall);
+  for (const std::string coupled : COUPLED_LAWS) {
+    if (coupled != COUPLED_LAWS[0]) {
+      TearDown();
+      SetUp();
+    }
+    const Result r = run(beta, coupled);
+    report("coupled " + coupled + ", beta 0.2", r);
+    const double push = beta * r.largest_overlap / DT;
+    EXPECT_LE(r.largest_rise, 0.5 * r.mass * push * push + 1e-9 * r.largest_fall) << coupled;
+  }
 }
