@@ -20,13 +20,14 @@ import subprocess
 import numpy as np
 import pytest
 
+from mpi_launch import mpi_prefix
+
 from activegrain import analysis, read_frame
 from activegrain.geometry import Annulus, geometry_from_box
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
-MPIRUN = os.environ.get("ACTIVEGRAIN_MPIRUN", "mpirun")
 STEPS = 10
 DT = 1.0e-5
 ORDER_TOLERANCE = 1e-6
@@ -50,15 +51,6 @@ fix             agree_order all ave/time 1 1 1 c_order[*] file {out}/order.txt f
 fix             agree_bins all ave/time 1 1 1 c_{bins}[*] mode vector file {out}/bins.txt format " %.15g"
 run             0 post no
 """
-
-
-def mpi_prefix(ranks):
-    if ranks == 1:
-        return []
-    flags = ["--allow-run-as-root"] if os.geteuid() == 0 else []
-    if ranks > 2:
-        flags.append("--oversubscribe")
-    return [MPIRUN, *flags, "-np", str(ranks)]
 
 
 def run_case(name, ranks, out):

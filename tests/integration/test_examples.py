@@ -7,10 +7,11 @@ import subprocess
 
 import pytest
 
+from mpi_launch import mpi_prefix
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
-MPIRUN = os.environ.get("ACTIVEGRAIN_MPIRUN", "mpirun")
 STEPS = 2000          # four vibration periods: beads and rods meet the plates and each other
 DT = 1.0e-5
 TOLERANCE = 0.005
@@ -27,15 +28,6 @@ DECKS = {
 SETUP = re.compile(r"ActiveGrain (\w+): .*phi_b = ([\d.]+) \(asked ([\d.]+)\), "
                    r"phi_r = ([\d.]+) \(asked ([\d.]+)\), (\d+) beads, (\d+) rods")
 LOOP = re.compile(r"Loop time of \S+ on (\d+) procs for (\d+) steps with (\d+) atoms")
-
-
-def mpi_prefix(ranks):
-    if ranks == 1:
-        return []
-    flags = ["--allow-run-as-root"] if os.geteuid() == 0 else []
-    if ranks > 2:
-        flags.append("--oversubscribe")
-    return [MPIRUN, *flags, "-np", str(ranks)]
 
 
 def run_deck(name, ranks, out):

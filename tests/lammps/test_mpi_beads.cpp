@@ -48,22 +48,11 @@ TEST_F(BeadMonolayer, SameMeanKineticEnergyOnAnyNumberOfRanks)
 {
   int me = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &me);
-  double reference[2] = {0, 0};
-  // Plugins are registered once per process, so the serial reference runs while the
-  // fixture's instance is closed.
-  TearDown();
-  if (me == 0) {
-    std::vector<const char *> args = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
-    auto serial = std::make_unique<LAMMPS_NS::LAMMPS>((int) args.size(), const_cast<char **>(args.data()),
-                                                      MPI_COMM_SELF);
-    lammps_command(serial.get(), "plugin load " ACTIVEGRAIN_PLUGIN_FILE);
-    const MeanAndError r = mean_kinetic_energy(serial.get());
-    EXPECT_FALSE(lammps_has_error(serial.get()));
-    reference[0] = r.mean;
-    reference[1] = r.error;
-  }
-  SetUp();
-  MPI_Bcast(reference, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  const std::vector<double> reference = serial_reference(2, [](LAMMPS_NS::LAMMPS *serial) {
+    const MeanAndError r = mean_kinetic_energy(serial);
+    EXPECT_FALSE(lammps_has_error(serial));
+    return std::vector<double>{r.mean, r.error};
+  });
 
   const MeanAndError parallel = mean_kinetic_energy(lmp);
   ASSERT_FALSE(lammps_has_error(lmp));
