@@ -3,7 +3,6 @@
 Runs in.single-rod (4 rods far apart per run, several seeds) and prints mean and spread of the
 speed along the rods' own axes. Long: minutes. Usage, from this folder:
     python3 measure.py [dt|friction|restitution|drive|spheres|ranks|order|all] [--lmp PATH] [--seeds N]
-                       [--coupled stronge|projection]
 """
 import argparse
 import os
@@ -15,17 +14,12 @@ import numpy as np
 import rodtrack
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# pair gran/impulse's law of coupled contacts and its sweep settings, for every run (--coupled).
-SOLVER = {"stronge": {"coupled": "stronge", "sweeps": 8, "tolerance": 1e-4},
-          "projection": {"coupled": "projection", "sweeps": 10000, "tolerance": 1e-8}}
-solver = SOLVER["stronge"]
-
 
 def run(lmp, tag, dt=1e-5, time=2.0, np_ranks=1, mpirun="mpirun", **vars_):
     os.makedirs(os.path.join(HERE, "out"), exist_ok=True)
     cmd = [lmp, "-in", "in.single-rod", "-log", "none", "-screen", "none", "-var", "tag", tag,
            "-var", "dt", repr(dt), "-var", "time", repr(time)]
-    for k, v in {**solver, **vars_}.items():
+    for k, v in vars_.items():
         cmd += ["-var", k, str(v)]
     if np_ranks > 1:
         cmd = [mpirun, "--oversubscribe", "-np", str(np_ranks)] + cmd
@@ -55,10 +49,7 @@ def main():
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--time", type=float, default=2.0)
-    ap.add_argument("--coupled", choices=sorted(SOLVER), default="stronge")
     a = ap.parse_args()
-    global solver
-    solver = SOLVER[a.coupled]
     L, S, T = a.lmp, a.seeds, a.time
     what = a.what
     if what in ("dt", "all"):
@@ -80,11 +71,11 @@ def main():
         table("Spheres per rod (dt 1e-5)", "spheres",
               [(n, speeds(L, f"n{n}", S, spheres=n, time=T)) for n in (6, 9, 17)])
     if what in ("order", "all"):
-        table("Contact order and sweeps (pair gran/impulse, dt 1e-5)", "solver",
+        table("Contact order and impact resolution (pair gran/impulse, dt 1e-5)", "solver",
               [(label, speeds(L, f"order_{label.split()[1]}", S, time=T, **kw)) for label, kw in (
                   ("order shuffle", {"order": "shuffle"}), ("order tag", {"order": "tag"}),
                   ("order reverse", {"order": "reverse"}),
-                  ("sweeps 100000 tolerance 1e-10", {"sweeps": 100000, "tolerance": 1e-10}))])
+                  ("resolution 100", {"resolution": 100}), ("resolution 1000", {"resolution": 1000}))])
     if what in ("ranks", "all"):
         table("MPI ranks (rods on sub-domain and periodic edges, dt 1e-5)", "ranks",
               [(p, speeds(L, f"np{p}", S, np_ranks=p, shift=-10e-3, time=T)) for p in (1, 2, 4)])

@@ -1,6 +1,8 @@
 #include "ag_contact_solver.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace ActiveGrain {
 
@@ -50,33 +52,68 @@ void ContactSolver::apply(const Contact &c, const Vec3 &J)
   bodies_[c.body2].apply_impulse_at_arm(J, c.r2);
 }
 
+namespace {
+
+// The spring of one contact in a compliant impact: unit stiffness while loading; unloading
+// along the line of stiffness 1/e^2 that ends (zero force) at compression peak (1 - e^2); a
+// plastic contact (e = 0) unloads at once.
+double spring_offset(const ContactSolver::Contact &c)
+{
+  const double e = c.material.e;
+  return c.peak * (1.0 - e * e);
+}
+
+double spring_force(const ContactSolver::Contact &c)
+{
+  if (!c.unloading) return std::max(0.0, c.compression);
+  if (c.material.e == 0.0) return 0.0;
+  return std::max(0.0, (c.compression - spring_offset(c)) / (c.material.e * c.material.e));
+}
+
+// (A plastic contact that approaches again at its peak reloads with unit stiffness.)
+double spring_stiffness(const ContactSolver::Contact &c)
+{
+  return c.unloading && c.material.e > 0.0 ? 1.0 / (c.material.e * c.material.e) : 1.0;
+}
+
+// The spring follows its compression: unloading once it shrinks, loading again beyond its peak.
+void compress(ContactSolver::Contact &c, double change)
+{
+  c.compression += change;
+  if (change < 0.0 && !c.unloading) c.unloading = true;
+  if (c.compression > c.peak) {
+    c.peak = c.compression;
+    c.unloading = false;
+  }
+}
+
+// The overlap correction's Jacobi pushes stop when every overlap opens within this fraction of
+// its minimum separation velocity, or after this many sweeps.
+constexpr double kOverlapTolerance = 1.0e-6;
+// In a compliant impact, a contact approaches if faster than this fraction of the island's
+// largest pre-impact speed.
+constexpr double kRestingSpeed = 1.0e-12;
+constexpr int kOverlapSweeps = 1000;
+
+}    // namespace
+
 // Matrices and targets from the pre-solve velocities; which contacts share a movable body.
 void ContactSolver::prepare()
 {
   std::vector<int> contacts_of_body(bodies_.size(), 0);
   for (Contact &c : contacts_) {
     c.K = contact_matrix(bodies_[c.body1], c.r1, bodies_[c.body2], c.r2);
-    c.K_inverse = c.K.inverse();
-    const Vec3 u = relative_velocity(c);
-    const double approach = std::max(0.0, -dot(u, c.n));
-    c.target_separation = std::max(c.material.e * approach, c.min_separation);
     c.impulse = Vec3();
-    c.speed = std::max(norm(u), c.target_separation);
     ++contacts_of_body[c.body1];
     ++contacts_of_body[c.body2];
   }
   auto alone = [&](int body) { return bodies_[body].is_static() || contacts_of_body[body] == 1; };
-  coupled_.clear();
-  for (int i = 0; i < num_contacts(); ++i) {
-    Contact &c = contacts_[i];
-    c.isolated = alone(c.body1) && alone(c.body2);
-    if (!c.isolated) coupled_.push_back(i);
-  }
+  for (Contact &c : contacts_) c.isolated = alone(c.body1) && alone(c.body2);
   find_islands();
 }
 
 // Coupled contacts that share a movable body, directly or through others, form one island;
-// islands do not interact within a solve, and each is swept until it converges.
+// islands do not interact within a solve.
 void ContactSolver::find_islands()
 {
   island_root_.resize(bodies_.size());
@@ -85,16 +122,16 @@ void ContactSolver::find_islands()
     while (island_root_[b] != b) b = island_root_[b] = island_root_[island_root_[b]];
     return b;
   };
-  for (int i : coupled_) {
-    const Contact &c = contacts_[i];
-    if (bodies_[c.body1].is_static() || bodies_[c.body2].is_static()) continue;
+  for (const Contact &c : contacts_) {
+    if (c.isolated || bodies_[c.body1].is_static() || bodies_[c.body2].is_static()) continue;
     const int r1 = root(c.body1), r2 = root(c.body2);
     if (r1 != r2) island_root_[std::max(r1, r2)] = std::min(r1, r2);
   }
   islands_.clear();
   std::vector<int> island_of_root(bodies_.size(), -1);
-  for (int i : coupled_) {
+  for (int i = 0; i < num_contacts(); ++i) {
     const Contact &c = contacts_[i];
+    if (c.isolated) continue;
     const int r = root(bodies_[c.body1].is_static() ? c.body2 : c.body1);
     if (island_of_root[r] < 0) {
       island_of_root[r] = static_cast<int>(islands_.size());
@@ -108,50 +145,193 @@ void ContactSolver::solve_isolated()
 {
   for (Contact &c : contacts_)
     if (c.isolated) {
-      c.impulse = contact_law_impulse(c.K, relative_velocity(c), c.n, c.material, c.target_separation);
+      const Vec3 u = relative_velocity(c);
+      const double target = std::max(c.material.e * std::max(0.0, -dot(u, c.n)), c.min_separation);
+      c.impulse = contact_law_impulse(c.K, u, c.n, c.material, target);
       apply(c, c.impulse);
     }
 }
 
-// One projected Gauss-Seidel sweep over an island's contacts, in the order they were added.
-// Returns the largest velocity correction of one contact update, |K dJ|, relative to the
-// island's velocity scale speed: zero exactly when every contact meets its conditions. (The change of the
-// bodies' velocities over a sweep is no measure: while the active contacts ask for more than
-// a rigid motion can give, their impulses drift and the bodies hardly move.)
-double ContactSolver::sweep(const std::vector<int> &island, double speed, CoupledLaw law)
+int ContactSolver::share(const Contact &c) const
 {
-  double largest_correction = 0.0;
-  for (int i : island) {
-    Contact &c = contacts_[i];
-    apply(c, -c.impulse);
-    const Vec3 u = relative_velocity(c);
-    const Vec3 J = law == CoupledLaw::PROJECTION
-        ? coupled_contact_impulse(c.K, c.K_inverse, u, c.n, c.material, c.target_separation)
-        : contact_law_impulse(c.K, u, c.n, c.material, c.target_separation);
-    largest_correction = std::max(largest_correction, norm(c.K * (J - c.impulse)));
-    c.impulse = J;
-    apply(c, c.impulse);
-  }
-  return speed > 0.0 ? largest_correction / speed : 0.0;
+  return std::max(bodies_[c.body1].is_static() ? 1 : body_contacts_[c.body1],
+                  bodies_[c.body2].is_static() ? 1 : body_contacts_[c.body2]);
 }
 
-ContactSolver::Result ContactSolver::solve(int max_sweeps, double tolerance, CoupledLaw law)
+// The island's springs all start to compress at once. Each sub-step: which contacts are
+// engaged (loaded, or approaching at or past the compression where their force starts), a
+// sub-step of pi / resolution of the fastest oscillation they make (a contact's inverse
+// effective mass times the stiffness its bodies feel), the impulses of all loaded contacts from
+// the same state, then the compressions move with the new velocities. A sticking contact's
+// tangential impulse is shared among the loaded contacts of its bodies, so that together they
+// do not overshoot. When no spring is engaged but one still approaches, the bodies fly freely
+// up to its contact.
+int ContactSolver::compliant_impact(const std::vector<int> &island, const Settings &settings)
+{
+  const double phase_per_substep = M_PI / settings.resolution;
+  const std::size_t size = island.size();
+  step_impulse_.resize(size);
+  velocity_.resize(size);
+  auto measure_velocities = [&] {
+    for (std::size_t k = 0; k < size; ++k) velocity_[k] = relative_velocity(contacts_[island[k]]);
+  };
+  for (int i : island) {
+    Contact &c = contacts_[i];
+    c.knn = dot(c.n, c.K * c.n);
+    c.tangential = TangentialStep(c.K, c.n);
+    c.compression = c.peak = 0.0;
+    c.unloading = false;
+  }
+  measure_velocities();
+  // Approach slower than this is round-off (a plastic contact left at rest at its peak).
+  double speed = 0.0;
+  for (const Vec3 &u : velocity_) speed = std::max(speed, norm(u));
+  const double approaching = -kRestingSpeed * speed;
+  int substeps = 0;
+  double previous_dtau = 0.0;    // the last drift: a kick spans half of it and half the next
+  while (true) {
+    for (int i : island) {
+      const Contact &c = contacts_[i];
+      body_stiffness_[c.body1] = body_stiffness_[c.body2] = 0.0;
+      body_contacts_[c.body1] = body_contacts_[c.body2] = 0;
+    }
+    bool engaged = false;
+    double to_contact = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < size; ++k) {
+      const Contact &c = contacts_[island[k]];
+      const double un = dot(velocity_[k], c.n);
+      const bool loaded = spring_force(c) > 0.0;
+      if (loaded || (un < approaching && c.compression >= spring_offset(c))) {
+        engaged = true;
+        const double stiffness = spring_stiffness(c);
+        body_stiffness_[c.body1] += stiffness;
+        body_stiffness_[c.body2] += stiffness;
+        body_contacts_[c.body1] += loaded;
+        body_contacts_[c.body2] += loaded;
+      } else if (un < approaching) {
+        to_contact = std::min(to_contact, (spring_offset(c) - c.compression) / -un);
+      }
+    }
+    if (!engaged) {
+      if (!std::isfinite(to_contact)) return substeps;    // all unloaded, none approaching
+      for (std::size_t k = 0; k < size; ++k) {
+        Contact &c = contacts_[island[k]];
+        compress(c, -dot(velocity_[k], c.n) * to_contact);
+      }
+      previous_dtau = 0.0;
+      continue;
+    }
+    if (substeps == settings.max_substeps) return -1;
+    ++substeps;
+
+    double omega2 = 0.0;
+    for (int i : island) {
+      const Contact &c = contacts_[i];
+      const double k1 = bodies_[c.body1].is_static() ? 0.0 : body_stiffness_[c.body1];
+      const double k2 = bodies_[c.body2].is_static() ? 0.0 : body_stiffness_[c.body2];
+      omega2 = std::max(omega2, c.knn * std::max(k1, k2));
+    }
+    const double dtau = phase_per_substep / std::sqrt(omega2);
+    const double kick = 0.5 * (previous_dtau + dtau);
+    previous_dtau = dtau;
+
+    for (std::size_t k = 0; k < size; ++k) {
+      const Contact &c = contacts_[island[k]];
+      const double dp = spring_force(c) * kick;
+      step_impulse_[k] = Vec3();
+      if (dp <= 0.0) continue;
+      bool stuck = false;
+      Vec3 friction = c.tangential.friction(velocity_[k], c.material.mu, dp, stuck);
+      if (stuck) friction *= 1.0 / share(c);
+      step_impulse_[k] = c.n * dp + friction;
+    }
+    for (std::size_t k = 0; k < size; ++k) {
+      Contact &c = contacts_[island[k]];
+      apply(c, step_impulse_[k]);
+      c.impulse += step_impulse_[k];
+    }
+    // A plastic contact (e = 0) passes its peak within the kick that turns its normal velocity:
+    // the kick's part after the peak would return energy it must not, so it is taken back (all
+    // from the same state, as the kick).
+    bool plastic_turned = false;
+    for (std::size_t k = 0; k < size; ++k) {
+      const Contact &c = contacts_[island[k]];
+      const double before = dot(velocity_[k], c.n);
+      step_impulse_[k] = c.material.e == 0.0 && before < 0.0 ? step_impulse_[k] : Vec3();
+      if (norm2(step_impulse_[k]) == 0.0) continue;
+      const double after = dot(relative_velocity(c), c.n);
+      step_impulse_[k] = after > 0.0 ? step_impulse_[k] * (after / (after - before)) : Vec3();
+      plastic_turned = plastic_turned || after > 0.0;
+    }
+    if (plastic_turned)
+      for (std::size_t k = 0; k < size; ++k) {
+        Contact &c = contacts_[island[k]];
+        if (norm2(step_impulse_[k]) == 0.0) continue;
+        apply(c, -step_impulse_[k]);
+        c.impulse -= step_impulse_[k];
+        c.unloading = true;
+      }
+    measure_velocities();
+    for (std::size_t k = 0; k < size; ++k) {
+      Contact &c = contacts_[island[k]];
+      compress(c, -dot(velocity_[k], c.n) * dtau);
+    }
+  }
+}
+
+// Overlapping contacts must open at least at their minimum separation velocity: pushes where one
+// opens slower, with Stronge's friction for their normal impulse (a body resting on a plate
+// under gravity sits on these pushes), each shared among the pushed contacts of its bodies (a
+// Jacobi step).
+double ContactSolver::separate_overlaps(const std::vector<int> &island)
+{
+  double largest = 0.0;
+  for (int sweep = 0; sweep < kOverlapSweeps; ++sweep) {
+    for (int i : island) body_contacts_[contacts_[i].body1] = body_contacts_[contacts_[i].body2] = 0;
+    largest = 0.0;
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const Contact &c = contacts_[island[k]];
+      velocity_[k] = relative_velocity(c);
+      const double shortfall = c.min_separation - dot(velocity_[k], c.n);
+      step_impulse_[k] = Vec3();
+      if (c.min_separation <= 0.0 || shortfall <= kOverlapTolerance * c.min_separation) continue;
+      largest = std::max(largest, shortfall / c.min_separation);
+      const double dp = shortfall / c.knn;
+      bool stuck = false;
+      step_impulse_[k] = c.n * dp + c.tangential.friction(velocity_[k], c.material.mu, dp, stuck);
+      ++body_contacts_[c.body1];
+      ++body_contacts_[c.body2];
+    }
+    if (largest == 0.0) break;
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      Contact &c = contacts_[island[k]];
+      if (norm2(step_impulse_[k]) == 0.0) continue;
+      const Vec3 J = step_impulse_[k] * (1.0 / share(c));
+      apply(c, J);
+      c.impulse += J;
+    }
+  }
+  return largest;
+}
+
+ContactSolver::Result ContactSolver::solve()
+{
+  return solve(Settings());
+}
+
+ContactSolver::Result ContactSolver::solve(const Settings &settings)
 {
   prepare();
   solve_isolated();
   Result result;
+  body_stiffness_.assign(bodies_.size(), 0.0);
+  body_contacts_.assign(bodies_.size(), 0);
   for (const std::vector<int> &island : islands_) {
-    double speed = 0.0;    // the island's velocity scale
-    for (int i : island) speed = std::max(speed, contacts_[i].speed);
-    int sweeps = 0;
-    double residual = 0.0;
-    do {
-      ++sweeps;
-      residual = sweep(island, speed, law);
-    } while (residual > tolerance && sweeps < max_sweeps);
-    result.sweeps = std::max(result.sweeps, sweeps);
-    result.residual = std::max(result.residual, residual);
-    result.converged = result.converged && residual <= tolerance;
+    const int substeps = compliant_impact(island, settings);
+    const double shortfall = separate_overlaps(island);
+    result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);
+    result.shortfall = std::max(result.shortfall, shortfall);
+    result.converged = result.converged && substeps >= 0 && shortfall <= kOverlapTolerance;
   }
   return result;
 }

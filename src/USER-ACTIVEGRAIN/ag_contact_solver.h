@@ -1,21 +1,31 @@
 // Many simultaneous contacts between rigid bodies (SPEC section 4b). No LAMMPS in here.
 //
 // A contact alone on its bodies (walls aside) is one two-body impact: Stronge's law of
-// ag_impulse.h, exactly. Contacts that share a body (a rod on a plate touches it with several
-// spheres; a bead in a packing touches its neighbours) form one problem whose contact impulses
-// are not unique, while the bodies' velocities after the step are: every contact must leave with
-// a normal velocity of at least its target (e times its pre-solve approach speed, or an overlap's
-// minimum separation velocity), pushing only where it reaches it exactly, and either stick or
-// slide with Coulomb friction against its final slip. Projected Gauss-Seidel sweeps solve it:
-// each contact update takes back the contact's impulse and applies coupled_contact_impulse, a
-// projection whose result depends only on those conditions, so the fixed point does not depend
-// on the order of the sweeps. Sweeps go on until no contact update in the last sweep changed
-// its contact's velocity by more than tolerance times the island's velocity scale (a residual
-// on velocities: it vanishes when every contact meets its conditions, whichever of the many
-// impulse sets of redundant contacts was reached).
+// ag_impulse.h, exactly. Contacts that share a movable body (a rod lying on a plate touches it
+// with several spheres; a bead in a packing touches its neighbours) form an island, and their
+// rigid-body problem has no unique answer: the contact impulses of a line contact are not
+// unique, and with friction neither are the bodies' velocities (how the normal impulse is
+// shared sets the friction torque). So an island is solved as what a real contact does: a
+// compliant impact. Every contact of the island is a spring that starts to compress at once;
+// it loads with unit stiffness and unloads along Walton & Braun's line of stiffness 1/e^2,
+// which returns e^2 of its compression work (Stronge's energetic restitution); its friction
+// is Stronge's (stick while the cone allows, else mu times the normal impulse against the
+// current slip). The impact is integrated in a fictitious time until every spring is unloaded
+// and no contact approaches. This is the Darboux-Keller multiple-impact model (Liu, Zhao &
+// Brogliato 2008) with linear springs of equal stiffness:
+//   - one contact alone gives exactly Stronge's impact (the same path in impulse space);
+//   - the result does not depend on the common stiffness (it only rescales the time), so the
+//     model adds no parameter; equal springs share a line contact's load as an elastic
+//     foundation does, linearly along the line, for any number of spheres;
+//   - every sub-step is a Jacobi step (all impulses from one state): the order of the contacts
+//     does not enter, only the sub-step size, which resolution sets;
+//   - springs with hysteresis and Coulomb friction never add energy.
+// Overlapping contacts must then open at least at their minimum separation velocity: pushes with
+// Stronge's friction, Jacobi again, after the impact (the overlap correction, the only energy
+// source; a body resting on a plate under gravity sits on it).
 //
-// Every solve starts from zero impulses (no warm start): the result is a function of the state
-// alone, so restarts continue a run exactly and every rank count solves the same problem.
+// Every solve starts from the state alone (no warm start), so restarts continue a run exactly
+// and every rank count solves the same problem.
 #pragma once
 
 #include "ag_impulse.h"
@@ -33,17 +43,24 @@ class ContactSolver {
     ContactMaterial material;
     double min_separation = 0.0;    // normal velocity the contact must at least leave with
     // Filled by solve():
-    Mat3 K, K_inverse;
-    double target_separation = 0.0;
-    double speed = 0.0;             // pre-solve relative speed, or the target if larger
+    Mat3 K;
     bool isolated = false;          // the only contact of both its (movable) bodies
     Vec3 impulse;                   // on body 2 (minus on body 1)
+    // The compliant impact's state: the spring's compression, its largest compression, and
+    // whether it unloads.
+    TangentialStep tangential;
+    double knn = 0.0, compression = 0.0, peak = 0.0;
+    bool unloading = false;
+  };
+  struct Settings {
+    int resolution = 300;    // sub-steps per half oscillation of the stiffest engaged contact
+    int max_substeps = 1000000;    // per island; then the island's impact stops where it is
   };
   struct Result {
-    int sweeps = 0;            // most Gauss-Seidel sweeps an island needed (0: none coupled)
-    double residual = 0.0;     // largest velocity correction of a contact in an island's last
-                               // sweep / velocity scale
-    bool converged = true;     // every island reached the tolerance (false: one stopped at max_sweeps)
+    int substeps = 0;         // most sub-steps an island's impact needed (0: none coupled)
+    double shortfall = 0.0;   // largest separation velocity still missing at an overlap,
+                              // relative to its minimum separation velocity
+    bool converged = true;    // every impact ended and every overlap opens (within tolerance)
   };
 
   void clear();
@@ -55,18 +72,10 @@ class ContactSolver {
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
                        const ContactMaterial &material, double min_separation = 0.0);
 
-  // How a contact that shares a body with others is updated in the sweeps:
-  //   PROJECTION  coupled_contact_impulse (conditions on the final velocity only): the sweeps
-  //               converge to body velocities independent of their order;
-  //   STRONGE     contact_law_impulse, Stronge's law of an isolated impact: no such fixed point,
-  //               so a fixed number of sweeps gives an order-dependent iterate. It is the law of
-  //               isolated contacts, and the two disagree where slip reverses within an impact.
-  enum class CoupledLaw { PROJECTION, STRONGE };
-
-  // Isolated contacts once, then each island of coupled contacts (linked through movable
-  // bodies) by at most max_sweeps sweeps in the order the contacts were added, until its
-  // residual is at most tolerance. Updates the bodies' velocities.
-  Result solve(int max_sweeps, double tolerance, CoupledLaw law = CoupledLaw::PROJECTION);
+  // Isolated contacts by Stronge's law, then each island by a compliant impact. Updates the
+  // bodies' velocities.
+  Result solve(const Settings &settings);
+  Result solve();    // with the default settings
 
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
   int num_contacts() const { return static_cast<int>(contacts_.size()); }
@@ -79,17 +88,23 @@ class ContactSolver {
   void prepare();
   void solve_isolated();
   void find_islands();
-  double sweep(const std::vector<int> &island, double speed, CoupledLaw law);    // returns the residual
+  int compliant_impact(const std::vector<int> &island, const Settings &settings);    // -1: capped
+  double separate_overlaps(const std::vector<int> &island);    // returns the shortfall left
 
   Vec3 relative_velocity(const Contact &c) const;
   void apply(const Contact &c, const Vec3 &J);
+  // Bodies' counts of the island's contacts in a Jacobi step: a share of each body's impulse.
+  int share(const Contact &c) const;
 
   std::vector<RigidBodyState> bodies_;
   std::vector<Contact> contacts_;
-  std::vector<int> coupled_;              // indices of the contacts that share a body
-  std::vector<std::vector<int>> islands_;    // coupled contacts linked by movable bodies, in order
+  std::vector<std::vector<int>> islands_;    // contacts that share movable bodies, in order
   std::vector<int> island_root_;             // per body (union-find)
-
+  // Scratch of the compliant impact, per body and per island contact.
+  std::vector<double> body_stiffness_;       // engaged spring stiffness on the body
+  std::vector<int> body_contacts_;           // loaded (or pushed) contacts on the body
+  std::vector<Vec3> step_impulse_;
+  std::vector<Vec3> velocity_;               // relative velocity per island contact
 };
 
 }    // namespace ActiveGrain

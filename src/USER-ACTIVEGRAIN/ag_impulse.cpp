@@ -16,60 +16,6 @@ constexpr int kMaxSubsteps = 200 * kSubsteps;
 // Slip is "constant in direction" when the post-impact slip is within this cosine tolerance of
 // the initial one.
 constexpr double kDirectionTolerance = 1.0e-9;
-// The final-slip direction of a sliding contact in a coupled solve: fixed-point iterations,
-// then (if they did not converge) a root search by sampling and bisection.
-constexpr int kDirectionFixedPointIterations = 8;
-constexpr int kDirectionSamples = 32;
-constexpr int kDirectionBisections = 40;
-
-// The tangential part of the impact for a fixed contact: tangent basis t1, t2, and what a
-// substep needs to stop the slip (K restricted to the tangent plane, inverted, and the
-// tangential velocity change per unit normal impulse).
-class TangentialStep {
- public:
-  TangentialStep(const Mat3 &K, const Vec3 &n) : n_(n)
-  {
-    const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    t1_ = cross(n, a);
-    t1_ = t1_ / norm(t1_);
-    t2_ = cross(n, t1_);
-    const Vec3 Kt1 = K * t1_, Kt2 = K * t2_, Kn = K * n;
-    const double a11 = dot(t1_, Kt1), a12 = dot(t1_, Kt2), a22 = dot(t2_, Kt2);
-    const double det = a11 * a22 - a12 * a12;
-    inv11_ = a22 / det;
-    inv12_ = -a12 / det;
-    inv22_ = a11 / det;
-    kn1_ = dot(t1_, Kn);
-    kn2_ = dot(t2_, Kn);
-    const double s1 = inv11_ * kn1_ + inv12_ * kn2_, s2 = inv12_ * kn1_ + inv22_ * kn2_;
-    sticking_ratio_ = std::sqrt(s1 * s1 + s2 * s2);
-  }
-
-  // Tangential over normal impulse that keeps a stuck contact stuck: it stays stuck while this
-  // is within the friction cone.
-  double sticking_ratio() const { return sticking_ratio_; }
-
-  // Tangential impulse over a substep with normal impulse dp that stops the slip of u, if the
-  // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
-  // against the current slip.
-  Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const
-  {
-    const double b1 = -dot(t1_, u) - dp * kn1_, b2 = -dot(t2_, u) - dp * kn2_;
-    const Vec3 stick = t1_ * (inv11_ * b1 + inv12_ * b2) + t2_ * (inv12_ * b1 + inv22_ * b2);
-    const double stick_norm = norm(stick);
-    const double limit = mu * dp;
-    stuck = stick_norm <= limit;
-    if (stuck) return stick;
-    const Vec3 ut = u - n_ * dot(u, n_);
-    const double slip = norm(ut);
-    if (slip > 0.0) return ut * (-limit / slip);
-    return stick * (limit / stick_norm);
-  }
-
- private:
-  Vec3 n_, t1_, t2_;
-  double inv11_, inv12_, inv22_, kn1_, kn2_, sticking_ratio_;
-};
 
 // Integrate the impact in impulse space with the normal impulse p as the independent variable.
 // Compression lasts while u.n < 0 and the normal impulse does work W_c < 0 then; restitution
@@ -186,6 +132,38 @@ double energetic_restitution(double un, double target_separation)
 
 }    // namespace
 
+TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n) : n_(n)
+{
+  const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  t1_ = cross(n, a);
+  t1_ = t1_ / norm(t1_);
+  t2_ = cross(n, t1_);
+  const Vec3 Kt1 = K * t1_, Kt2 = K * t2_, Kn = K * n;
+  const double a11 = dot(t1_, Kt1), a12 = dot(t1_, Kt2), a22 = dot(t2_, Kt2);
+  const double det = a11 * a22 - a12 * a12;
+  inv11_ = a22 / det;
+  inv12_ = -a12 / det;
+  inv22_ = a11 / det;
+  kn1_ = dot(t1_, Kn);
+  kn2_ = dot(t2_, Kn);
+  const double s1 = inv11_ * kn1_ + inv12_ * kn2_, s2 = inv12_ * kn1_ + inv22_ * kn2_;
+  sticking_ratio_ = std::sqrt(s1 * s1 + s2 * s2);
+}
+
+Vec3 TangentialStep::friction(const Vec3 &u, double mu, double dp, bool &stuck) const
+{
+  const double b1 = -dot(t1_, u) - dp * kn1_, b2 = -dot(t2_, u) - dp * kn2_;
+  const Vec3 stick = t1_ * (inv11_ * b1 + inv12_ * b2) + t2_ * (inv12_ * b1 + inv22_ * b2);
+  const double stick_norm = norm(stick);
+  const double limit = mu * dp;
+  stuck = stick_norm <= limit;
+  if (stuck) return stick;
+  // Against the slip the step would reach without friction: the current slip where it is large,
+  // the slip the normal impulse itself drives where it starts from rest.
+  const Vec3 slip = -(t1_ * b1 + t2_ * b2);
+  return slip * (-limit / norm(slip));
+}
+
 Mat3 contact_matrix(const RigidBodyState &body1, const Vec3 &r1, const RigidBodyState &body2,
                     const Vec3 &r2)
 {
@@ -238,76 +216,6 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
 
   // Slip stops, reverses or turns during the impact.
   return integrate_impact(K, u, n, material.mu, e_work, target_separation);
-}
-
-Vec3 coupled_contact_impulse(const Mat3 &K, const Mat3 &K_inverse, const Vec3 &u, const Vec3 &n,
-                             const ContactMaterial &material, double target_separation)
-{
-  const double un = dot(u, n);
-  if (un >= target_separation) return {};
-  const Vec3 stick = K_inverse * (n * target_separation - u);
-  if (inside_friction_cone(stick, n, material.mu)) return stick;
-
-  // Slide against the final slip s: J = j_n (n - mu s), j_n from the normal target, s the
-  // direction of the tangential part of u + K J. For a slip direction s, the impulse and the
-  // final slip (negative j_n: friction would pull the contact in, Painleve; not a solution):
-  auto slide = [&](const Vec3 &s, Vec3 &J, Vec3 &slip_after) {
-    const Vec3 direction = n - s * material.mu;
-    const double k_dir = dot(n, K * direction);
-    if (k_dir <= 0.0) return false;
-    J = direction * ((target_separation - un) / k_dir);
-    const Vec3 u_after = u + K * J;
-    slip_after = u_after - n * dot(u_after, n);
-    return true;
-  };
-  // Fixed-point iteration on s from the direction the sticking impulse opposes: it contracts
-  // by about mu times the tangential-normal coupling of K per iteration (one step for spheres).
-  const double stick_n = dot(stick, n);
-  Vec3 s = -(stick - n * stick_n);
-  s = s / norm(s);
-  const Vec3 s_start = s;
-  Vec3 J, slip_after;
-  for (int iteration = 0; iteration < kDirectionFixedPointIterations; ++iteration) {
-    if (!slide(s, J, slip_after) || norm(slip_after) == 0.0) break;
-    const Vec3 next = slip_after / norm(slip_after);
-    if (norm(next - s) <= kDirectionTolerance) return J;
-    s = next;
-  }
-  // Otherwise the root of the angle between s and the final slip, on a circle of directions
-  // around n: bracketed by sampling, refined by bisection; the root nearest the start (none
-  // found: the last iterate, friction mu j_n close to against the final slip).
-  const Vec3 t1 = s_start, t2 = cross(n, t1);
-  auto misfit = [&](double angle, bool &valid) {
-    const Vec3 dir = t1 * std::cos(angle) + t2 * std::sin(angle);
-    Vec3 J_angle, slip;
-    valid = slide(dir, J_angle, slip) && dot(slip, dir) > 0.0;
-    return dot(cross(dir, slip), n);
-  };
-  const double step = 2.0 * M_PI / kDirectionSamples;
-  double best_angle = 0.0, best_distance = 1e300;
-  bool found = false, valid_previous = false;
-  double previous = misfit(-M_PI, valid_previous);
-  for (int k = 1; k <= kDirectionSamples; ++k) {
-    double lo = -M_PI + (k - 1) * step, hi = lo + step;
-    bool valid_next = false;
-    const double next = misfit(hi, valid_next);
-    if (valid_previous && valid_next && (previous <= 0.0) != (next <= 0.0)) {
-      double f_lo = previous;
-      for (int b = 0; b < kDirectionBisections; ++b) {
-        const double mid = 0.5 * (lo + hi);
-        bool valid_mid = false;
-        const double f_mid = misfit(mid, valid_mid);
-        if ((f_lo <= 0.0) == (f_mid <= 0.0)) { lo = mid; f_lo = f_mid; } else { hi = mid; }
-      }
-      const double root = 0.5 * (lo + hi);
-      if (std::fabs(root) < best_distance) { best_distance = std::fabs(root); best_angle = root; found = true; }
-    }
-    previous = next;
-    valid_previous = valid_next;
-  }
-  if (found) slide(t1 * std::cos(best_angle) + t2 * std::sin(best_angle), J, slip_after);
-  else if (!slide(s, J, slip_after)) J = n * ((target_separation - un) / dot(n, K * n));    // Painleve
-  return J;
 }
 
 Vec3 collision_impulse(const RigidBodyState &body1, const RigidBodyState &body2, const Vec3 &point,

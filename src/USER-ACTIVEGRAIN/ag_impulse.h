@@ -30,24 +30,36 @@ Mat3 contact_matrix(const RigidBodyState &body1, const Vec3 &r1, const RigidBody
 double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J);
 
 // The contact law on relative velocity u (body 2 minus body 1 at the contact), unit normal n from
-// body 1 to body 2. target_separation (>= 0) is the normal velocity restitution aims for: for an
-// isolated impact e * max(0, -u.n); a multi-contact solver passes e times the pre-solve approach
-// speed, or a minimum separation velocity. Restitution (Stronge) returns at most the work of
+// body 1 to body 2. target_separation (>= 0) is the normal velocity restitution aims for:
+// e * max(0, -u.n), or an overlap's minimum separation velocity if larger. Restitution (Stronge) returns at most the work of
 // compression; if the contact still separates slower than target_separation after it, the
 // normal impulse continues to it, so the law is continuous where the target crosses the
 // approach speed. Returns the impulse on body 2; J.n >= 0.
 Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
                          double target_separation);
 
-// The same contact inside a coupled solve (contacts sharing a body): the impulse that leaves the
-// contact with normal velocity target_separation (none if u.n already reaches it) and either no
-// slip, if the friction cone allows, or Coulomb friction mu j_n against the final slip. It
-// depends on u only through the conditions on the final velocity, so projected Gauss-Seidel
-// sweeps of it converge to body velocities that do not depend on their order. It equals
-// contact_law_impulse wherever the slip keeps its direction through the impact.
-// K_inverse: K's inverse, computed once per solve.
-Vec3 coupled_contact_impulse(const Mat3 &K, const Mat3 &K_inverse, const Vec3 &u, const Vec3 &n,
-                             const ContactMaterial &material, double target_separation);
+// The tangential part of an impact at a fixed contact, integrated in small steps of normal
+// impulse (an integrated impact, or one contact of a compliant multi-contact impact): what a
+// step needs to stop the slip (K restricted to the tangent plane, inverted, and the tangential
+// velocity change per unit normal impulse).
+class TangentialStep {
+ public:
+  TangentialStep() = default;
+  TangentialStep(const Mat3 &K, const Vec3 &n);
+
+  // Tangential over normal impulse that keeps a stuck contact stuck: it stays stuck while this
+  // is within the friction cone.
+  double sticking_ratio() const { return sticking_ratio_; }
+
+  // Tangential impulse over a step with normal impulse dp that stops the slip of u, if the
+  // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
+  // against the slip (the current one, plus what dp drives within the step).
+  Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
+
+ private:
+  Vec3 n_, t1_, t2_;
+  double inv11_ = 0, inv12_ = 0, inv22_ = 0, kn1_ = 0, kn2_ = 0, sticking_ratio_ = 0;
+};
 
 // One isolated collision between body 1 and body 2 at contact point c with normal n (1 -> 2).
 // Returns the impulse J on body 2 (-J on body 1); zero if the bodies separate at c.

@@ -34,6 +34,7 @@ std::int64_t wrap(std::int64_t i, std::int64_t n)
 
 Vec3 SurfacePoint::normal_up() const
 {
+  if (slope_x == 0.0 && slope_y == 0.0) return {0.0, 0.0, 1.0};    // flat: the common case
   const Vec3 n(-slope_x, -slope_y, 1.0);
   return n / norm(n);
 }

@@ -37,22 +37,16 @@ using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Pair gran/impulse";
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
-// Sweep defaults per law of coupled contacts. Stronge's law (the default for now) is swept a
-// fixed few times: more sweeps do not converge it, they only move its order-dependent result
-// (docs/pair_gran_impulse.rst). The projection converges: its sweeps stop at the tolerance, and
-// the cap only guards against a solve that does not; a rod landing flat on a plate (nine
-// redundant contacts) can need thousands of sweeps to 1e-8.
-static constexpr int STRONGE_SWEEPS = 8;
-static constexpr double STRONGE_TOLERANCE = 1.0e-4;
-static constexpr int PROJECTION_SWEEPS = 10000;
-static constexpr double PROJECTION_TOLERANCE = 1.0e-8;
 static constexpr double DEFAULT_BETA = 0.2;
+// Below this many sub-steps per half oscillation a compliant impact is too coarse to keep its
+// restitution (docs/pair_gran_impulse.rst: the error is about 3/resolution).
+static constexpr int MIN_RESOLUTION = 20;
 static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), max_sweeps(STRONGE_SWEEPS), tolerance(STRONGE_TOLERANCE), beta(DEFAULT_BETA),
-    order(Order::SHUFFLE), coupled_law(ActiveGrain::ContactSolver::CoupledLaw::STRONGE), restitution(nullptr), friction(nullptr), maxrad(nullptr), pending(nullptr),
-    ghost_pairs(false), nmax(0), fcontact(nullptr), tcontact(nullptr), largest_overlap(0.0),
+    Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
+    maxrad(nullptr), pending(nullptr),
+    ghost_pairs(false), ranks(lmp), nmax(0), fcontact(nullptr), tcontact(nullptr), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
@@ -94,26 +88,24 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [coupled stronge|projection] [sweeps N] [tolerance T] [beta B]
-                           [order shuffle|tag|reverse]; every setting not given takes its default */
+/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse]; every setting
+   not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
-  using CoupledLaw = ActiveGrain::ContactSolver::CoupledLaw;
-  coupled_law = CoupledLaw::STRONGE;
-  max_sweeps = -1;
-  tolerance = -1.0;
+  solver_settings = ActiveGrain::ContactSolver::Settings();
   beta = DEFAULT_BETA;
   order = Order::SHUFFLE;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
+    if (key == "coupled" || key == "sweeps" || key == "tolerance")
+      error->all(FLERR, "{}: keyword {} is gone: contacts that share a body are solved as one "
+                 "compliant impact, whose only setting is resolution", STYLE, key);
     if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", STYLE, key);
-    if (key == "sweeps") {
-      max_sweeps = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (max_sweeps < 1) error->all(FLERR, "{}: sweeps must be >= 1", STYLE);
-    } else if (key == "tolerance") {
-      tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (tolerance < 0.0) error->all(FLERR, "{}: tolerance must be >= 0", STYLE);
+    if (key == "resolution") {
+      solver_settings.resolution = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (solver_settings.resolution < MIN_RESOLUTION)
+        error->all(FLERR, "{}: resolution must be >= {}", STYLE, MIN_RESOLUTION);
     } else if (key == "beta") {
       beta = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (beta < 0.0 || beta > 1.0) error->all(FLERR, "{}: beta must be in [0, 1]", STYLE);
@@ -123,19 +115,11 @@ void PairGranImpulse::settings(int narg, char **arg)
       else if (value == "tag") order = Order::TAG;
       else if (value == "reverse") order = Order::REVERSE;
       else error->all(FLERR, "{}: order must be shuffle, tag or reverse (found {})", STYLE, value);
-    } else if (key == "coupled") {
-      const std::string value = arg[iarg + 1];
-      if (value == "stronge") coupled_law = CoupledLaw::STRONGE;
-      else if (value == "projection") coupled_law = CoupledLaw::PROJECTION;
-      else error->all(FLERR, "{}: coupled must be stronge or projection (found {})", STYLE, value);
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
     iarg += 2;
   }
-  const bool stronge = coupled_law == CoupledLaw::STRONGE;
-  if (max_sweeps < 0) max_sweeps = stronge ? STRONGE_SWEEPS : PROJECTION_SWEEPS;
-  if (tolerance < 0.0) tolerance = stronge ? STRONGE_TOLERANCE : PROJECTION_TOLERANCE;
 }
 
 /* pair_coeff I J e mu */
@@ -231,86 +215,8 @@ void PairGranImpulse::grow_buffers()
     memset(&tcontact[0][0], 0, sizeof(double) * 3 * nall);
   }
   atom_body.assign(nall, -1);
-}
-
-// Rigid body IDs of all atoms, and which atoms' contacts this rank solves: owned beads, and the
-// atoms of bodies this rank decides (LowestTagRule), one copy each: the owned one, else the
-// ghost image nearest the body's lowest-tag atom.
-void PairGranImpulse::assign_contact_ranks()
-{
-  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  tagint *tag = atom->tag;
-  rigid_body_id.assign(nall, 0);
-  solved_here.assign(nall, 0);
-  std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
-  if (!ghost_pairs) return;
-
-  LowestTagRule solving;
-  RigidBodyState state;
-  for (int i = 0; i < nall; i++)
-    for (RigidBodyProvider *provider : providers)
-      if (provider->body_of_atom(i, state, rigid_body_id[i])) {
-        solving.add(rigid_body_id[i], tag[i]);
-        break;
-      }
-  for (int i = 0; i < nall; i++) {
-    if (!rigid_body_id[i]) continue;
-    const int solver_atom = solving.deciding_atom(atom, rigid_body_id[i]);
-    solved_here[i] = 0;
-    if (solver_atom < 0) continue;
-    const int owned = atom->map(tag[i]);    // map() prefers the owned copy
-    solved_here[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
-  }
-}
-
-// Whether this rank solves the contact of i with neighbor j, so that each physical contact is
-// solved on one rank, once: a contact with a rigid body's atom from that atom if its body has
-// the lower ID of the two and i is the copy solved here; a pair of beads from the owned bead i
-// (with a full list or a ghost j listed on both ranks, only from the lower tag).
-bool PairGranImpulse::solves_pair(int i, int j) const
-{
-  const tagint body_i = rigid_body_id[i], body_j = rigid_body_id[j];
-  if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here[i];
-  const int nlocal = atom->nlocal;
-  if (i >= nlocal) return false;
-  if (ghost_pairs || (!force->newton_pair && j >= nlocal)) return atom->tag[i] < atom->tag[j];
-  return true;
-}
-
-// On several ranks, the solver rank of a body sees all its atoms and their contacts only if
-// its ghost shell reaches a neighbor cutoff beyond the body's far end: span + neighbor cutoff
-// <= ghost cutoff. The span (largest distance between two atoms of a body) is measured where a
-// whole body is visible (fix rigid/small's ghost cutoff check ensures one rank sees it).
-void PairGranImpulse::check_ghost_cutoff()
-{
-  if (comm->nprocs == 1) return;
-  const int nlocal = atom->nlocal;
-  double **x = atom->x;
-  std::unordered_map<tagint, std::vector<int>> visible;    // bodies with an owned atom
-  for (int i = 0; i < nlocal; i++)
-    if (rigid_body_id[i]) visible[rigid_body_id[i]];
-  for (int j = 0; j < (int) rigid_body_id.size(); j++) {
-    auto found = visible.find(rigid_body_id[j]);
-    if (found != visible.end()) found->second.push_back(j);
-  }
-  double span = 0.0;
-  for (auto &body : visible) {
-    const std::vector<int> &atoms = body.second;
-    for (std::size_t a = 0; a < atoms.size(); a++)
-      for (std::size_t b = a + 1; b < atoms.size(); b++) {
-        double image[3];
-        domain->closest_image(x[atoms[a]], x[atoms[b]], image);
-        const double d[3] = {image[0] - x[atoms[a]][0], image[1] - x[atoms[a]][1], image[2] - x[atoms[a]][2]};
-        span = std::max(span, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-      }
-  }
-  double largest = 0.0;
-  MPI_Allreduce(&span, &largest, 1, MPI_DOUBLE, MPI_MAX, world);
-  const double needed = largest + neighbor->cutneighmax;
-  if (needed > comm->get_comm_cutoff())
-    error->all(FLERR, "{}: rigid body span {:.6g} + neighbor cutoff {:.6g} exceeds the ghost cutoff "
-               "{:.6g}: use comm_modify cutoff {:.6g}", STYLE, largest, neighbor->cutneighmax,
-               comm->get_comm_cutoff(), needed);
+  spin_speed.resize(nall);
+  for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
 }
 
 // The solver body of atom i: its rigid body if a provider claims it (all atoms of one body
@@ -388,16 +294,17 @@ void PairGranImpulse::add_found_contacts()
   }
 }
 
-// An upper bound of the speed at which atom i closes in on atom j (j < 0: a wall moving at
-// wall_velocity), surface speeds of spins included, from the atoms' own velocities. Pairs and
-// walls farther apart than it carries them in one step are skipped before bodies are built.
-double PairGranImpulse::closing_speed_bound(int i, int j, const Vec3 &wall_velocity) const
+// Whether atom i can close a gap to atom j (j < 0: a wall moving at wall_velocity) within this
+// step: gap < (|v_i - v_j| + surface speeds of their spins) dt, an upper bound of the closing
+// speed from the atoms' own velocities. Pairs and walls it rules out are skipped before bodies
+// are built. Spin surface speeds come from spin_speed (this step's, per atom).
+bool PairGranImpulse::may_close(int i, int j, const Vec3 &wall_velocity, double gap) const
 {
-  double **v = atom->v, **omega = atom->omega;
-  double *radius = atom->radius;
+  if (gap <= 0.0) return true;
+  double **v = atom->v;
   const Vec3 partner = j >= 0 ? Vec3(v[j]) : wall_velocity;
-  const double spins = norm(Vec3(omega[i])) * radius[i] + (j >= 0 ? norm(Vec3(omega[j])) * radius[j] : 0.0);
-  return norm(Vec3(v[i]) - partner) + spins;
+  const double slack = gap / update->dt - spin_speed[i] - (j >= 0 ? spin_speed[j] : 0.0);
+  return slack < 0.0 || slack * slack < norm2(Vec3(v[i]) - partner);
 }
 
 void PairGranImpulse::gather_pair_contacts()
@@ -406,23 +313,22 @@ void PairGranImpulse::gather_pair_contacts()
   double *radius = atom->radius;
   int *type = atom->type;
   const double reach = neighbor->skin;
-  const double dt = update->dt;
 
   const int nlist = list->inum + (list->ghost ? list->gnum : 0);
   for (int ii = 0; ii < nlist; ii++) {
     const int i = list->ilist[ii];
-    if (i >= atom->nlocal && !solved_here[i]) continue;    // most ghosts: nothing to solve here
+    if (i >= atom->nlocal && !ranks.solves_atom(i)) continue;    // most ghosts: nothing to solve here
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      if (!solves_pair(i, j)) continue;
+      if (!ranks.solves_pair(i, j)) continue;
       Vec3 d = Vec3(x[j]) - Vec3(x[i]);
       const double radsum = radius[i] + radius[j];
       const double rsq = norm2(d);
       if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
       const double r = std::sqrt(rsq);
       const double gap = r - radsum;
-      if (gap > 0.0 && gap >= closing_speed_bound(i, j, Vec3()) * dt) continue;
+      if (!may_close(i, j, Vec3(), gap)) continue;
       const Vec3 n = d / r;    // from i to j
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
@@ -439,9 +345,9 @@ void PairGranImpulse::gather_wall_contacts()
   const double reach = neighbor->skin;
   for (ImpulseWall *wall : walls) {
     wall_scratch.clear();
-    wall->find_wall_contacts(reach, solved_here, wall_scratch);
+    wall->find_wall_contacts(reach, ranks.solved_atoms(), wall_scratch);
     for (const ImpulseWall::Contact &c : wall_scratch) {
-      if (c.gap > 0.0 && c.gap >= closing_speed_bound(c.atom, -1, c.wall_velocity) * update->dt) continue;
+      if (!may_close(c.atom, -1, c.wall_velocity, c.gap)) continue;
       const int b = body_of_atom(c.atom);
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
       add_contact(w, b, {-1, c.atom, wall, c.surface, c.point}, c.normal, c.gap, c.material, Vec3(),
@@ -502,12 +408,11 @@ void PairGranImpulse::restore_pending_forces()
       }
 }
 
-// Solver health into pvector (see Output), and a warning when the sweep cap keeps stopping the
-// solve before the tolerance.
+// Solver health into pvector (see Output), and a warning when impacts keep hitting the cap.
 void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &result)
 {
-  enum Reduced { R_SWEEPS, R_RESIDUAL, R_OVERLAP, R_CAPPED, NUM_REDUCED };
-  double mine[NUM_REDUCED] = {(double) result.sweeps, result.residual, largest_overlap,
+  enum Reduced { R_SUBSTEPS, R_SHORTFALL, R_OVERLAP, R_CAPPED, NUM_REDUCED };
+  double mine[NUM_REDUCED] = {(double) result.substeps, result.shortfall, largest_overlap,
                               result.converged ? 0.0 : 1.0};
   double all[NUM_REDUCED];
   if (comm->nprocs > 1) MPI_Allreduce(mine, all, NUM_REDUCED, MPI_DOUBLE, MPI_MAX, world);
@@ -517,17 +422,16 @@ void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &res
   // Maxima go to rank 0 only: compute pair sums pvector over ranks.
   const double here = comm->me == 0 ? 1.0 : 0.0;
   pvector[CONTACTS] = solver.num_contacts();
-  pvector[SWEEPS] = here * all[R_SWEEPS];
-  pvector[RESIDUAL] = here * all[R_RESIDUAL];
+  pvector[SUBSTEPS] = here * all[R_SUBSTEPS];
+  pvector[SHORTFALL] = here * all[R_SHORTFALL];
   pvector[LARGEST_OVERLAP] = here * all[R_OVERLAP];
   pvector[CAPPED_STEPS] = here * (double) capped_steps;
 
-  // Stronge's law is swept a fixed number of times by design: only a converging law warns.
-  if (capped_steps == next_cap_warning && coupled_law == ActiveGrain::ContactSolver::CoupledLaw::PROJECTION) {
+  if (capped_steps == next_cap_warning) {
     if (comm->me == 0)
-      error->warning(FLERR, "{}: the contact solve stopped at the sweep cap ({} sweeps) in {} steps of "
-                     "this run, residual {:.3g} > tolerance {:.3g}: raise sweeps", STYLE, max_sweeps,
-                     capped_steps, all[R_RESIDUAL], tolerance);
+      error->warning(FLERR, "{}: in {} steps of this run a compliant impact did not end within {} "
+                     "sub-steps or an overlap did not open (shortfall {:.3g})", STYLE, capped_steps,
+                     solver_settings.max_substeps, all[R_SHORTFALL]);
     next_cap_warning *= 10;
   }
 }
@@ -547,13 +451,13 @@ void PairGranImpulse::compute(int eflag, int vflag)
     next_cap_warning = FIRST_CAP_WARNING;
     std::fill(pvector, pvector + NUM_OUTPUTS, 0.0);
     if (ghost_pairs) {
-      assign_contact_ranks();
-      check_ghost_cutoff();
+      ranks.assign(providers);
+      ranks.check_ghost_cutoff(STYLE);
     }
     return;
   }
 
-  assign_contact_ranks();
+  ranks.assign(providers);
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
@@ -561,7 +465,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
   gather_pair_contacts();
   gather_wall_contacts();
   add_found_contacts();
-  record_solve(solver.solve(max_sweeps, tolerance, coupled_law));
+  record_solve(solver.solve(solver_settings));
   distribute_impulses();
   comm->reverse_comm(this);
   apply_contact_forces(true);
@@ -625,31 +529,25 @@ void PairGranImpulse::read_restart(FILE *fp)
 
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
-  const int order_code = static_cast<int>(order), law_code = static_cast<int>(coupled_law);
-  fwrite(&max_sweeps, sizeof(int), 1, fp);
-  fwrite(&tolerance, sizeof(double), 1, fp);
+  const int order_code = static_cast<int>(order);
+  fwrite(&solver_settings.resolution, sizeof(int), 1, fp);
   fwrite(&beta, sizeof(double), 1, fp);
   fwrite(&order_code, sizeof(int), 1, fp);
-  fwrite(&law_code, sizeof(int), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
 {
-  int order_code = 0, law_code = 0;
+  int order_code = 0;
+  solver_settings = ActiveGrain::ContactSolver::Settings();
   if (comm->me == 0) {
-    utils::sfread(FLERR, &max_sweeps, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &solver_settings.resolution, sizeof(int), 1, fp, nullptr, error);
     utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &law_code, sizeof(int), 1, fp, nullptr, error);
   }
-  MPI_Bcast(&max_sweeps, 1, MPI_INT, 0, world);
-  MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
-  MPI_Bcast(&law_code, 1, MPI_INT, 0, world);
   order = static_cast<Order>(order_code);
-  coupled_law = static_cast<ActiveGrain::ContactSolver::CoupledLaw>(law_code);
 }
 
 void *PairGranImpulse::extract(const char *name, int &dim)
@@ -663,7 +561,7 @@ void *PairGranImpulse::extract(const char *name, int &dim)
 double PairGranImpulse::memory_usage()
 {
   return 6.0 * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
-      (double) rigid_body_id.capacity() * sizeof(tagint) + (double) solved_here.capacity() +
+      ranks.memory_usage() +
       (double) found.capacity() * sizeof(FoundContact) +
       (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
 }

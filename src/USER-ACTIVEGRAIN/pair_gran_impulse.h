@@ -11,6 +11,7 @@ PairStyle(gran/impulse,PairGranImpulse);
 #define LMP_PAIR_GRAN_IMPULSE_H
 
 #include "ag_contact_solver.h"
+#include "contact_ranks.h"
 #include "impulse_wall.h"
 #include "pair.h"
 
@@ -42,15 +43,17 @@ class PairGranImpulse : public Pair {
   void *extract(const char *, int &) override;
   double memory_usage() override;
 
- // Global outputs, pvector (compute pair gran/impulse, which sums them over ranks: a maximum is
+  // Global outputs, pvector (compute pair gran/impulse, which sums them over ranks: a maximum is
   // held by rank 0, the other ranks hold 0). New outputs (e.g. energy input and dissipation) are
   // appended before NUM_OUTPUTS; existing indices never change.
   enum Output {
     CONTACTS = 0,       // contacts solved in the last step, all ranks
-    SWEEPS,             // most Gauss-Seidel sweeps a rank needed in the last step
-    RESIDUAL,           // largest final residual (relative body velocity change) of the last step
+    SUBSTEPS,           // most sub-steps a compliant impact needed in the last step
+    SHORTFALL,          // largest separation velocity an overlap still lacks after the last
+                        // step, relative to its minimum separation velocity
     LARGEST_OVERLAP,    // largest overlap of a contact since the run's setup (length)
-    CAPPED_STEPS,       // steps since the run's setup in which a solve stopped at the sweep cap
+    CAPPED_STEPS,       // steps since the run's setup in which an impact hit the sub-step cap
+                        // or an overlap did not open
     NUM_OUTPUTS
   };
   // Order in which contacts are visited: a hash of the step and the contact's identity (default),
@@ -86,10 +89,7 @@ class PairGranImpulse : public Pair {
   void allocate();
   void grow_buffers();
   int body_of_atom(int i);
-  void assign_contact_ranks();
-  bool solves_pair(int i, int j) const;
-  void check_ghost_cutoff();
-  double closing_speed_bound(int i, int j, const ActiveGrain::Vec3 &wall_velocity) const;
+  bool may_close(int i, int j, const ActiveGrain::Vec3 &wall_velocity, double gap) const;
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
                    double gap, const ActiveGrain::ContactMaterial &material,
@@ -103,11 +103,9 @@ class PairGranImpulse : public Pair {
   void record_solve(const ActiveGrain::ContactSolver::Result &result);
 
   // settings
-  int max_sweeps;
-  double tolerance;    // on the residual of the body velocities
+  ActiveGrain::ContactSolver::Settings solver_settings;
   double beta;         // overlaps leave at >= beta * overlap / dt
   Order order;
-  ActiveGrain::ContactSolver::CoupledLaw coupled_law;
 
   double **restitution, **friction;
   double *maxrad;    // largest radius per type (neighbor cutoff)
@@ -126,15 +124,10 @@ class PairGranImpulse : public Pair {
   std::vector<ImpulseWall::Contact> wall_scratch;
   std::unordered_map<tagint, int> body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
   std::vector<int> atom_body;                     // solver body of each atom, -1 before lookup
+  std::vector<double> spin_speed;                 // |omega| radius of each atom, this step
 
-  // Which rank solves what (assign_contact_ranks): every contact of a rigid body's atom is
-  // solved on the body's solver rank (LowestTagRule), from one copy of each atom (the owned
-  // one, else the ghost image nearest the body's lowest-tag atom). Bead contacts stay with the
-  // owned beads.
-  bool ghost_pairs;                     // rigid bodies exist: full neighbor list with ghosts
-  std::vector<tagint> rigid_body_id;    // per owned or ghost atom: its body's ID, 0 for a bead
-  std::vector<char> solved_here;        // per atom: this rank solves its wall contacts (and, for
-                                        // a body's atom, the contacts its body decides)
+  bool ghost_pairs;       // rigid bodies exist: a full neighbor list with ghosts
+  ContactRanks ranks;     // which rank solves which contact
 
   // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
   int nmax;

@@ -188,7 +188,10 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
   command("pair_style gran/impulse");
   EXPECT_NE(error_of("pair_coeff * * 1.2 0.1").find("Pair gran/impulse: restitution"), std::string::npos);
   EXPECT_NE(error_of("pair_coeff * * 0.3 -0.1").find("Pair gran/impulse: friction"), std::string::npos);
-  EXPECT_NE(error_of("pair_style gran/impulse sweeps 0").find("sweeps"), std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse resolution 5").find("Pair gran/impulse: resolution must be"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse order random").find("order must be"), std::string::npos);
   command(kPair);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),
             std::string::npos);

@@ -58,9 +58,6 @@ std::string bounce_deck(const std::string &file, const Bounce &setup)
               "fix beads bead nve/sphere\nvariable bead_vz equal vcm(bead,z)\n"
             : "") +
       "velocity all set 0.05 0.02 -0.1 units box\n"
-      // Default solver settings: a flat rod's 9 contacts leave its impulses underdetermined, so
-      // that many more sweeps wander and amplify round-off (differences of 1e-13 in the input
-      // grow to ~1 % after 1000 sweeps); 8 sweeps keep the result a smooth function of it.
       "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
       "fix rods rod rigid/rod molecule mol rod\n" +
       plate + "timestep 1e-5\n"

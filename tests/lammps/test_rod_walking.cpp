@@ -88,8 +88,10 @@ TEST_F(RodWalkingTest, RodDroppedFlatOnStillPlateComesToRest)
           "run 0 post no");
   const double x0 = value("v_x"), y0 = value("v_y");
   command("run 20000 post no");    // 0.2 s more
+  // At rest: below 1 um/s (a tapered rod may keep rolling about its axis at a fraction of that,
+  // without rolling resistance in a rigid model), against 4 mm/s for walking.
   EXPECT_LT(value("v_speed"), 1e-6);
-  EXPECT_LT(std::hypot(value("v_x") - x0, value("v_y") - y0), 1e-7);
+  EXPECT_LT(std::hypot(value("v_x") - x0, value("v_y") - y0), 2e-7);
 }
 
 TEST_F(RodWalkingTest, RestartContinuesTheWalkExactly)

@@ -1,0 +1,100 @@
+#include "contact_ranks.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "local_rods.h"
+#include "neighbor.h"
+#include "rigid_body_provider.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+using namespace LAMMPS_NS;
+
+// Rigid body IDs of all atoms, and which atoms' contacts this rank solves: owned beads, and the
+// atoms of bodies this rank decides (LowestTagRule), one copy each: the owned one, else the
+// ghost image nearest the body's lowest-tag atom.
+void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
+{
+  rigid_bodies_ = !providers.empty();
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  tagint *tag = atom->tag;
+  body_id_.assign(nall, 0);
+  solved_here_.assign(nall, 0);
+  std::fill(solved_here_.begin(), solved_here_.begin() + nlocal, 1);
+  if (!rigid_bodies_) return;
+
+  LowestTagRule solving;
+  ActiveGrain::RigidBodyState state;
+  for (int i = 0; i < nall; i++)
+    for (RigidBodyProvider *provider : providers)
+      if (provider->body_of_atom(i, state, body_id_[i])) {
+        solving.add(body_id_[i], tag[i]);
+        break;
+      }
+  for (int i = 0; i < nall; i++) {
+    if (!body_id_[i]) continue;
+    const int solver_atom = solving.deciding_atom(atom, body_id_[i]);
+    solved_here_[i] = 0;
+    if (solver_atom < 0) continue;
+    const int owned = atom->map(tag[i]);    // map() prefers the owned copy
+    solved_here_[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
+  }
+}
+
+// Whether this rank solves the contact of i with neighbor j, so that each physical contact is
+// solved on one rank, once: a contact with a rigid body's atom from that atom if its body has
+// the lower ID of the two and i is the copy solved here; a pair of beads from the owned bead i
+// (with a full list or a ghost j listed on both ranks, only from the lower tag).
+bool ContactRanks::solves_pair(int i, int j) const
+{
+  const tagint body_i = body_id_[i], body_j = body_id_[j];
+  if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here_[i];
+  const int nlocal = atom->nlocal;
+  if (i >= nlocal) return false;
+  if (rigid_bodies_ || (!force->newton_pair && j >= nlocal)) return atom->tag[i] < atom->tag[j];
+  return true;
+}
+
+// span + neighbor cutoff <= ghost cutoff. The span (largest distance between two atoms of a body) is measured where a
+// whole body is visible (fix rigid/small's ghost cutoff check ensures one rank sees it).
+void ContactRanks::check_ghost_cutoff(const char *style)
+{
+  if (comm->nprocs == 1) return;
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  std::unordered_map<tagint, std::vector<int>> visible;    // bodies with an owned atom
+  for (int i = 0; i < nlocal; i++)
+    if (body_id_[i]) visible[body_id_[i]];
+  for (int j = 0; j < (int) body_id_.size(); j++) {
+    auto found = visible.find(body_id_[j]);
+    if (found != visible.end()) found->second.push_back(j);
+  }
+  double span = 0.0;
+  for (auto &body : visible) {
+    const std::vector<int> &atoms = body.second;
+    for (std::size_t a = 0; a < atoms.size(); a++)
+      for (std::size_t b = a + 1; b < atoms.size(); b++) {
+        double image[3];
+        domain->closest_image(x[atoms[a]], x[atoms[b]], image);
+        const double d[3] = {image[0] - x[atoms[a]][0], image[1] - x[atoms[a]][1], image[2] - x[atoms[a]][2]};
+        span = std::max(span, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      }
+  }
+  double largest = 0.0;
+  MPI_Allreduce(&span, &largest, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double needed = largest + neighbor->cutneighmax;
+  if (needed > comm->get_comm_cutoff())
+    error->all(FLERR, "{}: rigid body span {:.6g} + neighbor cutoff {:.6g} exceeds the ghost cutoff "
+               "{:.6g}: use comm_modify cutoff {:.6g}", style, largest, neighbor->cutneighmax,
+               comm->get_comm_cutoff(), needed);
+}
+
+double ContactRanks::memory_usage() const
+{
+  return (double) body_id_.capacity() * sizeof(tagint) + (double) solved_here_.capacity();
+}

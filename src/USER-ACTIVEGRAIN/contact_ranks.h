@@ -1,0 +1,43 @@
+// Which rank solves which contact (pair gran/impulse), so that every physical contact is solved
+// once, and all contacts of a rigid body together on one rank, on any number of ranks: a rigid
+// body's contacts on its solver rank (LowestTagRule), from one copy of each of its atoms (the
+// owned one, else the ghost image nearest the body's lowest-tag atom); contacts between beads
+// from the owned bead.
+#pragma once
+
+#include "pointers.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class RigidBodyProvider;
+
+class ContactRanks : protected Pointers {
+ public:
+  explicit ContactRanks(LAMMPS *lmp) : Pointers(lmp) {}
+
+  // Rigid body IDs of all owned and ghost atoms and which of them this rank solves. Without
+  // providers every owned atom is solved here (a half neighbor list).
+  void assign(const std::vector<RigidBodyProvider *> &providers);
+
+  // This rank solves atom i's wall contacts (and, for a body's atom, the contacts its body decides).
+  bool solves_atom(int i) const { return solved_here_[i]; }
+  const std::vector<char> &solved_atoms() const { return solved_here_; }
+  // This rank solves the contact of i with neighbor j (from i's side of the neighbor list).
+  bool solves_pair(int i, int j) const;
+
+  // On several ranks, the solver rank of a body sees all its atoms and their contacts only if
+  // its ghost shell reaches a neighbor cutoff beyond the body's far end: an error naming
+  // `style` otherwise.
+  void check_ghost_cutoff(const char *style);
+
+  double memory_usage() const;
+
+ private:
+  bool rigid_bodies_ = false;          // a full neighbor list with ghosts
+  std::vector<tagint> body_id_;        // per owned or ghost atom: its body's ID, 0 for a bead
+  std::vector<char> solved_here_;
+};
+
+}    // namespace LAMMPS_NS
