@@ -56,7 +56,7 @@ struct Solver::Plans {
   fftw_complex *spectrum = nullptr;
   fftw_plan forward = nullptr, backward = nullptr;
   // scratch of nonlinear_terms
-  std::vector<double> delta_rho, delta_sigma, polarization, product;
+  std::vector<double> delta_rho, delta_sigma, polarization, gradient, product;
   std::vector<Complex> mode_scratch;
 
   Plans(const Grid &g, int num_modes)
@@ -74,6 +74,7 @@ struct Solver::Plans {
     delta_rho.resize(n);
     delta_sigma.resize(n);
     polarization.resize(n);
+    gradient.resize(n);
     product.resize(n);
     mode_scratch.resize(num_modes);
   }
@@ -228,6 +229,7 @@ void Solver::nonlinear_terms(const std::vector<Complex> &state, std::vector<Comp
 
   std::fill(out.begin(), out.end(), 0.0);
   Complex *out_rho = out.data(), *out_sigma = out.data() + num_modes_;
+  const bool proportional = params_.proportional_cross_diffusion;
   for (int d = 0; d < grid_.dim; ++d) {
     const std::vector<double> &k = d == 0 ? kx_ : ky_;
     if (relaxed_polarization())
@@ -236,13 +238,25 @@ void Solver::nonlinear_terms(const std::vector<Complex> &state, std::vector<Comp
       slaved_polarization(rho_hat, sigma_hat, d, scratch);
       to_grid(scratch, w.polarization.data());
     }
-    // - alpha div(delta rho P) and - u0 div(delta sigma P), one component at a time
-    for (int x = 0; x < n; ++x) w.product[x] = w.delta_rho[x] * w.polarization[x];
+    // the velocity each species' excess moves with: alpha P (- D_rho_sigma grad sigma / rho0)
+    if (proportional) {
+      for (int m = 0; m < num_modes_; ++m) scratch[m] = I * k[m] * sigma_hat[m];
+      to_grid(scratch, w.gradient.data());
+    }
+    for (int x = 0; x < n; ++x)
+      w.product[x] = w.delta_rho[x] * (params_.alpha * w.polarization[x] -
+                                       (proportional ? params_.D_rho_sigma / rho0_ * w.gradient[x] : 0.0));
     from_grid(w.product.data(), scratch);
-    for (int m = 0; m < num_modes_; ++m) out_rho[m] -= params_.alpha * I * k[m] * scratch[m];
-    for (int x = 0; x < n; ++x) w.product[x] = w.delta_sigma[x] * w.polarization[x];
+    for (int m = 0; m < num_modes_; ++m) out_rho[m] -= I * k[m] * scratch[m];
+    if (proportional) {
+      for (int m = 0; m < num_modes_; ++m) scratch[m] = I * k[m] * rho_hat[m];
+      to_grid(scratch, w.gradient.data());
+    }
+    for (int x = 0; x < n; ++x)
+      w.product[x] = w.delta_sigma[x] * (params_.u0 * w.polarization[x] -
+                                         (proportional ? params_.D_sigma_rho / sigma0_ * w.gradient[x] : 0.0));
     from_grid(w.product.data(), scratch);
-    for (int m = 0; m < num_modes_; ++m) out_sigma[m] -= params_.u0 * I * k[m] * scratch[m];
+    for (int m = 0; m < num_modes_; ++m) out_sigma[m] -= I * k[m] * scratch[m];
   }
 }
 
@@ -255,6 +269,7 @@ void Solver::set_state(const double *rho, const double *sigma, const double *P)
     throw std::invalid_argument("P: needed when P relaxes (tau > 0)");
   if (!relaxed_polarization() && P)
     throw std::invalid_argument("P: must be null when P is slaved (tau = 0); it follows from rho and sigma");
+  has_state_ = false;   // until the new one is complete
   const int n = grid_.num_points();
   for (const double *f : {rho, sigma})
     for (int x = 0; x < n; ++x)
@@ -268,6 +283,8 @@ void Solver::set_state(const double *rho, const double *sigma, const double *P)
   }
   rho0_ = state_[0].real();
   sigma0_ = state_[num_modes_].real();
+  if (params_.proportional_cross_diffusion && !(rho0_ > 0.0 && sigma0_ > 0.0))
+    throw std::invalid_argument("rho, sigma: proportional cross-diffusion needs positive mean densities");
   factorise(3.0, 2.0, sbdf2_inverse_);
   time_ = 0.0;
   steps_taken_ = 0;

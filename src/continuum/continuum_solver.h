@@ -2,15 +2,20 @@
 // 1D or 2D grid. No LAMMPS in here; FFTW does the transforms.
 //
 // Fields: bead density rho, rod density sigma, polarization P (d components).
-//   d rho/dt   = D_rho lap rho + D_rho_sigma lap sigma - alpha div(rho P)
-//   d sigma/dt = D_sigma_rho lap rho + D_sigma lap sigma - u0 div(sigma P)
+//   d rho/dt   = D_rho lap rho + D_rho_sigma div(c_rho grad sigma) - alpha div(rho P)
+//   d sigma/dt = D_sigma_rho div(c_sigma grad rho) + D_sigma lap sigma - u0 div(sigma P)
+// with c_rho = c_sigma = 1 (the paper's constant cross-diffusivities), or, with
+// proportional_cross_diffusion, c_rho = rho/rho0 and c_sigma = sigma/sigma0: the same linear
+// theory, but a species is no longer pushed where it is absent, so densities stay positive
+// (with constant D_rho_sigma > 0 beads flee rods into negative density).
 //   slaved (tau = 0):   (a - K lap) P = A grad rho + B grad sigma
 //   relaxed (tau > 0):  tau dP/dt = -(a - K lap) P + A grad rho + B grad sigma
 //
 // Time stepping (SBDF2, semi-implicit BDF2): with rho = rho0 + delta rho (rho0 the conserved
 // mean, likewise sigma), every term linear in the deviations -- diffusion, alpha rho0 div P,
 // u0 sigma0 div P and the P dynamics -- is the operator L(k), one small matrix per Fourier mode,
-// taken implicitly; the rest, N = -(alpha div(delta rho P), u0 div(delta sigma P)), explicitly:
+// taken implicitly; the rest, N = -(alpha div(delta rho P), u0 div(delta sigma P)) (and the
+// proportional cross-diffusion's div(delta rho grad sigma) / rho0, ...), explicitly:
 //   (3 - 2 dt L) u^{n+1} = 4 u^n - u^{n-1} + 2 dt (2 N^n - N^{n-1}),
 // started by one IMEX Euler step. (3 - 2 dt L)^{-1} is computed once per mode when the state is
 // set, so a small perturbation follows the exact linear dynamics of the scheme, and stiff
@@ -42,6 +47,7 @@ struct ModelParameters {
   double D_rho = 0.0, D_sigma = 0.0, D_rho_sigma = 0.0, D_sigma_rho = 0.0;
   double alpha = 0.0, u0 = 0.0, A = 0.0, B = 0.0, a = 1.0, K = 0.0;
   double tau = 0.0;     // 0: P slaved to the gradients; > 0: P relaxes on this time scale
+  bool proportional_cross_diffusion = false;
 };
 
 // Thrown by Solver::step when the state stops being finite.

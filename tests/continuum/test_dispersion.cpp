@@ -192,6 +192,18 @@ TEST(Dispersion, NonReciprocalSlaved1D)
   expect_within(r, 0.01, "non-reciprocal slaved 1D");
 }
 
+// cross-diffusion proportional to the moving species' density: the same linear theory
+TEST(Dispersion, NonReciprocalProportionalCrossDiffusion1D)
+{
+  for (double tau : {0.0, 0.5}) {
+    Background b = non_reciprocal(tau);
+    b.p.proportional_cross_diffusion = true;
+    const auto r = measure_rates(line(96, 8 * PI), b, 1e-3, 3.0, LINE_MODES);
+    ASSERT_TRUE(any_complex(r));
+    expect_within(r, 0.01, "non-reciprocal, proportional cross-diffusion 1D");
+  }
+}
+
 TEST(Dispersion, ReciprocalRelaxed1D)
 {
   const auto r = measure_rates(line(96, 8 * PI), reciprocal(0.5), 1e-3, 3.0, LINE_MODES);

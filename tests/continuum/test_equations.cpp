@@ -73,10 +73,13 @@ void check_first_step(const ModelParameters &p)
       const Point Px = evaluate(px, x, y), Py = evaluate(py, x, y);
       rho[at] = rho0 + r.value, sigma[at] = sigma0 + s.value, P[at] = Px.value, P[n + at] = Py.value;
       const double div_P = Px.dx + Py.dy;
-      // d rho/dt = -div J_rho, J_rho = -D_rho grad rho - D_rho_sigma grad sigma + alpha rho P
-      rho_rate[at] = p.D_rho * r.lap + p.D_rho_sigma * s.lap -
+      // d rho/dt = -div J_rho, J_rho = -D_rho grad rho - D_rho_sigma c_rho grad sigma + alpha rho P
+      const double grads = r.dx * s.dx + r.dy * s.dy;
+      const double cross_rho = p.proportional_cross_diffusion ? (grads + rho[at] * s.lap) / rho0 : s.lap;
+      const double cross_sigma = p.proportional_cross_diffusion ? (grads + sigma[at] * r.lap) / sigma0 : r.lap;
+      rho_rate[at] = p.D_rho * r.lap + p.D_rho_sigma * cross_rho -
                      p.alpha * (r.dx * Px.value + r.dy * Py.value + rho[at] * div_P);
-      sigma_rate[at] = p.D_sigma_rho * r.lap + p.D_sigma * s.lap -
+      sigma_rate[at] = p.D_sigma_rho * cross_sigma + p.D_sigma * s.lap -
                        p.u0 * (s.dx * Px.value + s.dy * Py.value + sigma[at] * div_P);
       // tau dP/dt = -(a - K lap) P + A grad rho + B grad sigma
       P_rate[at] = (-(p.a * Px.value - p.K * Px.lap) + p.A * r.dx + p.B * s.dx) / p.tau;
@@ -105,9 +108,10 @@ void check_first_step(const ModelParameters &p)
   EXPECT_LT(worst, 1e-6 * scale);
 }
 
-ModelParameters parameters(double tau)
+ModelParameters parameters(double tau, bool proportional = false)
 {
   ModelParameters p;
+  p.proportional_cross_diffusion = proportional;
   p.D_rho = 0.3, p.D_sigma = 0.2, p.D_rho_sigma = 0.4, p.D_sigma_rho = 0.1;
   p.alpha = 1.3, p.u0 = 0.7, p.A = 1.1, p.B = -0.6, p.a = 1.5, p.K = 0.8, p.tau = tau;
   return p;
@@ -118,3 +122,9 @@ ModelParameters parameters(double tau)
 TEST(Equations, FirstStepMatchesRightHandSideSlaved) { check_first_step(parameters(0.0)); }
 
 TEST(Equations, FirstStepMatchesRightHandSideRelaxed) { check_first_step(parameters(0.4)); }
+
+TEST(Equations, FirstStepMatchesRightHandSideProportionalCrossDiffusion)
+{
+  check_first_step(parameters(0.0, true));
+  check_first_step(parameters(0.4, true));
+}

@@ -1,0 +1,140 @@
+"""Draw the figures of docs/continuum.rst with the continuum solver and print the numbers the
+page quotes.
+
+    python3 -m activegrain.continuum_figures docs/figures/continuum
+"""
+import os
+import sys
+import time
+from dataclasses import replace
+
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from . import continuum as C, theory as T  # noqa: E402
+
+# Reciprocal: beads condense (A alpha rho0 + B u0 sigma0 > 0) and rods follow; real rates.
+RECIPROCAL = C.ContinuumParameters(rho0=1.0, sigma0=0.2, D_rho=0.1, D_sigma=0.1, D_rho_sigma=0.05,
+                                   D_sigma_rho=0.02, alpha=1.0, u0=1.0, A=1.0, B=0.5, a=2.0, K=1.0,
+                                   proportional_cross_diffusion=True)
+# Non-reciprocal: beads flee rods (D_rho_sigma), rods pursue beads (A > 0); complex rates.
+NON_RECIPROCAL = C.ContinuumParameters(rho0=1.0, sigma0=0.5, D_rho=0.05, D_sigma=0.05, D_rho_sigma=1.0,
+                                       D_sigma_rho=0.0, alpha=1.0, u0=1.0, A=1.0, B=0.0, a=1.0, K=1.0,
+                                       proportional_cross_diffusion=True)
+
+
+def dispersion_figure(path):
+    """Growth rates: full relation, the paper's eqs. 1-2, and the solver's measured rates."""
+    p, L = RECIPROCAL, 16 * np.pi
+    k = np.linspace(0.01, 3.2, 300)
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    ax.plot(k, T.growth_rates(k, p, expanded=False)[:, 0].real, "k-", label="exact (slaved P)")
+    ax.plot(k, T.growth_rates(k, p, expanded=True)[:, 0].real, "k--", label="paper eqs. 1-2 (4th order in k)")
+    m = np.arange(2, 26, 2)
+    measured = [C.measured_growth_rate(p, L, int(i), n=128, dt=2e-3, t_end=6.0) for i in m]
+    ax.plot(2 * np.pi * m / L, measured, "o", color="C3", label="solver, measured")
+    ax.axhline(0, color="0.7", lw=0.8)
+    ax.set_ylim(-0.6, 0.45)
+    ax.set_xlabel("k")
+    ax.set_ylabel(r"Re $\lambda$")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    err = max(abs(mi - T.growth_rates(2 * np.pi * i / L, p, expanded=False)[0].real)
+              / abs(T.growth_rates(2 * np.pi * i / L, p, expanded=False)[0].real) for i, mi in zip(m, measured))
+    print(f"dispersion: largest relative error of the measured rates {err:.2e}")
+
+
+def diagram_figure(path):
+    rho0 = np.linspace(0.05, 2.0, 60)
+    sigma0 = np.linspace(0.02, 1.0, 50)
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.8))
+    for ax, (name, p) in zip(axes, [("reciprocal couplings", RECIPROCAL), ("non-reciprocal couplings", NON_RECIPROCAL)]):
+        C.plot_stability_diagram(p, rho0, sigma0, None, ax=ax)
+        ax.plot(p.rho0, p.sigma0, "k*", ms=10)
+        ax.set_title(name, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def nonlinear_figures(outdir):
+    out = lambda name: os.path.join(outdir, name)
+    runs = {}
+    # with D_rho = 0.1 the condensing peaks sharpen without bound and the run ends near t = 21
+    # (the same for dt / 5 and twice the points); a weaker instability lasts longer
+    for name, p, L, t_end, n in [("condensation", replace(RECIPROCAL, D_rho=0.3), 100.0, 90.0, 512),
+                                 ("travelling", NON_RECIPROCAL, 100.0, 300.0, 512)]:
+        t0 = time.time()
+        run = C.simulate(p, n, L, 2.5e-3, t_end, frames=150, amplitude=1e-2, seed=1)
+        print(f"{name}: 1D n {n}, {len(run.t)} frames to t = {t_end}: {time.time() - t0:.1f} s wall; "
+              f"rho in [{run.rho.min():.2f}, {run.rho.max():.2f}], sigma in [{run.sigma.min():.2f}, "
+              f"{run.sigma.max():.2f}]; mass drift {abs(run.rho[-1].mean() / run.rho[0].mean() - 1):.1e}")
+        runs[name] = run
+        fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
+        C.kymograph(run, None, "rho", ax=axes[0])
+        C.kymograph(run, None, "sigma", ax=axes[1])
+        fig.tight_layout()
+        fig.savefig(out(f"kymograph_{name}.png"), dpi=100)
+        plt.close(fig)
+    return runs
+
+
+def band_figure(path):
+    """One travelling band in a box of one wavelength: the bead profile ahead of the rod band
+    against eq. 5's exponential."""
+    p = NON_RECIPROCAL
+    L = 20.0
+    run = C.simulate(p, 2048, L, 1e-3, 300.0, frames=150, amplitude=1e-2, seed=2)
+    _, v0 = C.band_track(run)
+    d, rho, sigma = C.profile_ahead(run)
+    # ahead of the band: over 1.5 from the rho maximum on, fit rho0 + (rho+ - rho0) exp(-d / l)
+    i0 = int(np.argmax(rho[: len(d) // 4]))
+    sel = slice(i0, i0 + int(1.5 / (d[1] - d[0])))
+    from scipy.optimize import curve_fit
+    f = lambda x, rp, ell, r0: r0 + (rp - r0) * np.exp(-(x - d[i0]) / ell)
+    (rp, ell, r0), _ = curve_fit(f, d[sel], rho[sel], p0=(rho[i0], 1.0, rho[sel][-1]))
+    ell_bare = p.D_rho / abs(v0)
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    ax.set_xlim(0, 5)
+    ax.plot(d, rho, label=r"$\rho$ (beads)")
+    ax.plot(d, sigma, label=r"$\sigma$ (rods)")
+    ax.plot(d[sel], f(d[sel], rp, ell, r0), "k--", label=rf"exponential fit, $\ell$ = {ell:.2f}")
+    ax.set_xlabel("distance ahead of the rod maximum (direction of motion)")
+    ax.legend(fontsize=8)
+    ax.set_title(f"travelling band, speed {abs(v0):.3f}", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(f"band: speed {abs(v0):.4f}, fitted ell {ell:.3f} (rho+ {rp:.3f}, far {r0:.3f}); "
+          f"eq. 5 with the bare bead diffusivity D_rho / v0 = {ell_bare:.3f}")
+    return run
+
+
+def two_d_figures(outdir):
+    p = replace(NON_RECIPROCAL)
+    t0 = time.time()
+    run = C.simulate(p, (96, 96), (40.0, 40.0), 2.5e-3, 120.0, frames=60, amplitude=1e-2, seed=3)
+    print(f"2D: 96 x 96 to t = 120: {time.time() - t0:.1f} s wall; rho in [{run.rho.min():.2f}, "
+          f"{run.rho.max():.2f}]")
+    C.snapshot(run, os.path.join(outdir, "snapshot_2d.png"))
+    C.movie(replace(run, t=run.t[20::2], rho=run.rho[20::2], sigma=run.sigma[20::2], P=run.P[20::2]),
+            os.path.join(outdir, "movie_2d.gif"), fps=6)
+
+
+def main(outdir):
+    os.makedirs(outdir, exist_ok=True)
+    if "--only-runs" not in sys.argv:
+        dispersion_figure(os.path.join(outdir, "dispersion.png"))
+        diagram_figure(os.path.join(outdir, "diagram.png"))
+    nonlinear_figures(outdir)
+    band_figure(os.path.join(outdir, "band_profile.png"))
+    two_d_figures(outdir)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else "docs/figures/continuum")
