@@ -182,8 +182,8 @@ class Solver:
         return t.value
 
     def close(self):
-        if getattr(self, "_handle", None):
-            _lib().ag_continuum_destroy(self._handle)
+        if getattr(self, "_handle", None) and _library is not None:
+            _library.ag_continuum_destroy(self._handle)
             self._handle = None
 
     def __enter__(self):
@@ -221,6 +221,20 @@ def random_start(params, shape, amplitude=1e-3, seed=0):
     rho = params.rho0 * (1 + amplitude * rng.uniform(-1, 1, shape))
     sigma = params.sigma0 * (1 + amplitude * rng.uniform(-1, 1, shape))
     return rho, sigma
+
+
+def eigenmode_start(params, n, length, k_index, amplitude=1e-2):
+    """(rho, sigma) on a 1D grid: the uniform state plus the fastest-growing eigenmode of
+    :func:`theory.stability_matrix` at k = 2 pi k_index / length (a wave travelling in one
+    direction where that eigenvalue is complex), of relative amplitude ``amplitude``."""
+    k = 2 * np.pi * k_index / length
+    lam, vectors = np.linalg.eig(theory.stability_matrix(k, params, expanded=False))
+    best = np.flatnonzero(lam.real == lam.real.max())
+    v = vectors[:, best[np.argmax(lam[best].imag)]]     # of a complex pair, the one with Im > 0
+    v = v / np.abs(v).max()
+    wave = np.exp(2j * np.pi * k_index * np.arange(n) / n)
+    return params.rho0 + amplitude * params.rho0 * (v[0] * wave).real, \
+        params.sigma0 + amplitude * params.rho0 * (v[1] * wave).real
 
 
 def simulate(params, n, length, dt, t_end, frames=100, start=None, amplitude=1e-3, seed=0):
@@ -301,14 +315,17 @@ def stability_diagram(params, rho0, sigma0):
 # --------------------------------------------------------------------------- bands
 
 def band_track(run, field="sigma"):
-    """Position of the maximum of ``field`` in each frame of a 1D run, unwrapped across the
-    periodic boundary, and its mean speed over the second half of the run (a travelling band's
-    velocity)."""
+    """Position of the bands of a 1D run's ``field`` in each frame and their mean speed over
+    the second half of the run. The bands are the field's strongest Fourier mode m (in the last
+    frame); its phase, unwrapped in time, moves a crest by -d(phase)/k: robust where m equal
+    bands share the box."""
     if run.dim != 1:
         raise ValueError("band_track: needs a 1D run")
     L = run.length[0]
-    values = getattr(run, field)
-    pos = np.unwrap(run.x[np.argmax(values, axis=1)] * 2 * np.pi / L) * L / (2 * np.pi)
+    spectrum = np.fft.rfft(getattr(run, field), axis=1)
+    m = 1 + int(np.argmax(np.abs(spectrum[-1, 1:])))
+    k = 2 * np.pi * m / L
+    pos = -np.unwrap(np.angle(spectrum[:, m])) / k
     half = len(run.t) // 2
     speed = np.polyfit(run.t[half:], pos[half:], 1)[0]
     return pos, float(speed)
@@ -388,7 +405,7 @@ def snapshot(run, path, frame=-1):
     return fig
 
 
-def movie(run, path, fps=10):
+def movie(run, path, fps=10, dpi=80):
     """Animate the frames (GIF through Pillow; .mp4 where ffmpeg is installed)."""
     plt = _plt()
     from matplotlib import animation
@@ -399,7 +416,7 @@ def movie(run, path, fps=10):
         fig, axes = plt.subplots(1, 2, figsize=(8, 3.8))
     anim = animation.FuncAnimation(fig, lambda i: _draw(axes[0], axes[1], run, i), frames=len(run.t))
     writer = animation.PillowWriter(fps=fps) if str(path).endswith(".gif") else animation.FFMpegWriter(fps=fps)
-    anim.save(path, writer=writer)
+    anim.save(path, writer=writer, dpi=dpi)
     plt.close(fig)
 
 

@@ -21,7 +21,7 @@ RECIPROCAL = C.ContinuumParameters(rho0=1.0, sigma0=0.2, D_rho=0.1, D_sigma=0.1,
                                    D_sigma_rho=0.02, alpha=1.0, u0=1.0, A=1.0, B=0.5, a=2.0, K=1.0,
                                    proportional_cross_diffusion=True)
 # Non-reciprocal: beads flee rods (D_rho_sigma), rods pursue beads (A > 0); complex rates.
-NON_RECIPROCAL = C.ContinuumParameters(rho0=1.0, sigma0=0.5, D_rho=0.05, D_sigma=0.05, D_rho_sigma=1.0,
+NON_RECIPROCAL = C.ContinuumParameters(rho0=1.0, sigma0=0.5, D_rho=0.2, D_sigma=0.2, D_rho_sigma=1.0,
                                        D_sigma_rho=0.0, alpha=1.0, u0=1.0, A=1.0, B=0.0, a=1.0, K=1.0,
                                        proportional_cross_diffusion=True)
 
@@ -56,6 +56,13 @@ def diagram_figure(path):
     for ax, (name, p) in zip(axes, [("reciprocal couplings", RECIPROCAL), ("non-reciprocal couplings", NON_RECIPROCAL)]):
         C.plot_stability_diagram(p, rho0, sigma0, None, ax=ax)
         ax.plot(p.rho0, p.sigma0, "k*", ms=10)
+        # the paper's non-reciprocity condition (its limit D_rho = D_sigma = D_sigma_rho = 0)
+        R, S = np.meshgrid(rho0, sigma0)
+        paper = np.vectorize(lambda r, s: T.nonreciprocity_condition(replace(p, rho0=r, sigma0=s)))(R, S)
+        if paper.any() and not paper.all():
+            ax.contour(rho0, sigma0, paper.astype(float), levels=[0.5], colors="k", linestyles="--")
+            ax.plot([], [], "k--", label="paper's non-reciprocity\ncondition (D's = 0)")
+            ax.legend(loc="upper right", fontsize=7)
         ax.set_title(name, fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -67,10 +74,10 @@ def nonlinear_figures(outdir):
     runs = {}
     # with D_rho = 0.1 the condensing peaks sharpen without bound and the run ends near t = 21
     # (the same for dt / 5 and twice the points); a weaker instability lasts longer
-    for name, p, L, t_end, n in [("condensation", replace(RECIPROCAL, D_rho=0.3), 100.0, 90.0, 512),
-                                 ("travelling", NON_RECIPROCAL, 100.0, 300.0, 512)]:
+    for name, p, L, t_end, n, dt in [("condensation", replace(RECIPROCAL, D_rho=0.3), 100.0, 90.0, 512, 2.5e-3),
+                                     ("travelling", NON_RECIPROCAL, 100.0, 600.0, 512, 2.5e-3)]:
         t0 = time.time()
-        run = C.simulate(p, n, L, 2.5e-3, t_end, frames=150, amplitude=1e-2, seed=1)
+        run = C.simulate(p, n, L, dt, t_end, frames=150, amplitude=1e-2, seed=1)
         print(f"{name}: 1D n {n}, {len(run.t)} frames to t = {t_end}: {time.time() - t0:.1f} s wall; "
               f"rho in [{run.rho.min():.2f}, {run.rho.max():.2f}], sigma in [{run.sigma.min():.2f}, "
               f"{run.sigma.max():.2f}]; mass drift {abs(run.rho[-1].mean() / run.rho[0].mean() - 1):.1e}")
@@ -85,56 +92,62 @@ def nonlinear_figures(outdir):
 
 
 def band_figure(path):
-    """One travelling band in a box of one wavelength: the bead profile ahead of the rod band
-    against eq. 5's exponential."""
-    p = NON_RECIPROCAL
-    L = 20.0
-    run = C.simulate(p, 2048, L, 1e-3, 300.0, frames=150, amplitude=1e-2, seed=2)
+    """A wave travelling one way (seeded by the complex eigenmode, before it turns into a
+    standing pattern): the bead profile ahead of the rod band against eq. 5's exponential."""
+    p, L, n, m = NON_RECIPROCAL, 30.0, 512, 4
+    run = C.simulate(p, n, L, 2e-3, 200.0, frames=200, start=C.eigenmode_start(p, n, L, m))
     _, v0 = C.band_track(run)
     d, rho, sigma = C.profile_ahead(run)
-    # ahead of the band: over 1.5 from the rho maximum on, fit rho0 + (rho+ - rho0) exp(-d / l)
-    i0 = int(np.argmax(rho[: len(d) // 4]))
-    sel = slice(i0, i0 + int(1.5 / (d[1] - d[0])))
+    # ahead of the bead maximum that leads the rod band, fit rho_far + (rho+ - rho_far) exp(-d / l)
+    spacing = L / m
+    i0 = int(np.argmax(np.where(d < spacing, rho, -np.inf)))
+    i1 = i0 + int(np.argmin(rho[i0:i0 + int(spacing / 2 / (d[1] - d[0]))]))
+    sel = slice(i0, i1 + 1)
     from scipy.optimize import curve_fit
     f = lambda x, rp, ell, r0: r0 + (rp - r0) * np.exp(-(x - d[i0]) / ell)
-    (rp, ell, r0), _ = curve_fit(f, d[sel], rho[sel], p0=(rho[i0], 1.0, rho[sel][-1]))
+    (rp, ell, r0), _ = curve_fit(f, d[sel], rho[sel], p0=(rho[i0], 1.0, rho[i1]))
+    # eq. 5 with the beads' own stiffness: ideal (Pi' = gamma D_rho), or with the current
+    # alpha rho P of P slaved to the beads' own gradient, Pi'/gamma = D_rho - alpha A rho / a
     ell_bare = p.D_rho / abs(v0)
+    stiffness_slaved = p.D_rho - p.alpha * p.A * rp / p.a
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
-    ax.set_xlim(0, 5)
     ax.plot(d, rho, label=r"$\rho$ (beads)")
     ax.plot(d, sigma, label=r"$\sigma$ (rods)")
     ax.plot(d[sel], f(d[sel], rp, ell, r0), "k--", label=rf"exponential fit, $\ell$ = {ell:.2f}")
+    ax.plot(d[sel], r0 + (rp - r0) * np.exp(-(d[sel] - d[i0]) / ell_bare), "k:",
+            label=rf"eq. 5, $\Pi' = \gamma D_\rho$: $\ell_+$ = {ell_bare:.2f}")
+    ax.set_xlim(0, 2 * spacing)
     ax.set_xlabel("distance ahead of the rod maximum (direction of motion)")
     ax.legend(fontsize=8)
-    ax.set_title(f"travelling band, speed {abs(v0):.3f}", fontsize=10)
+    ax.set_title(f"travelling wave, speed {abs(v0):.3f}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
-    print(f"band: speed {abs(v0):.4f}, fitted ell {ell:.3f} (rho+ {rp:.3f}, far {r0:.3f}); "
-          f"eq. 5 with the bare bead diffusivity D_rho / v0 = {ell_bare:.3f}")
+    print(f"band: speed {abs(v0):.4f}, fitted ell {ell:.3f} (rho+ {rp:.3f}, far {r0:.3f}); eq. 5 with "
+          f"Pi' = gamma D_rho: {ell_bare:.3f}; D_rho - alpha A rho+ / a = {stiffness_slaved:.3f}")
     return run
 
 
 def two_d_figures(outdir):
-    p = replace(NON_RECIPROCAL)
+    p = NON_RECIPROCAL
     t0 = time.time()
-    run = C.simulate(p, (96, 96), (40.0, 40.0), 2.5e-3, 120.0, frames=60, amplitude=1e-2, seed=3)
-    print(f"2D: 96 x 96 to t = 120: {time.time() - t0:.1f} s wall; rho in [{run.rho.min():.2f}, "
-          f"{run.rho.max():.2f}]")
+    # later the rings' bead edges sharpen below the grid (at t = 150: rho from -0.46 to 9.5)
+    run = C.simulate(p, (128, 128), (40.0, 40.0), 2.5e-3, 100.0, frames=50, amplitude=1e-2, seed=3)
+    print(f"2D: 128 x 128 to t = 100: {time.time() - t0:.1f} s wall; rho in [{run.rho.min():.2f}, "
+          f"{run.rho.max():.2f}]; mass drift {abs(run.rho[-1].mean() / run.rho[0].mean() - 1):.1e}")
     C.snapshot(run, os.path.join(outdir, "snapshot_2d.png"))
-    C.movie(replace(run, t=run.t[20::2], rho=run.rho[20::2], sigma=run.sigma[20::2], P=run.P[20::2]),
-            os.path.join(outdir, "movie_2d.gif"), fps=6)
+    C.movie(replace(run, t=run.t[20:], rho=run.rho[20:], sigma=run.sigma[20:], P=run.P[20:]),
+            os.path.join(outdir, "movie_2d.gif"), fps=5, dpi=60)
 
 
 def main(outdir):
     os.makedirs(outdir, exist_ok=True)
-    if "--only-runs" not in sys.argv:
-        dispersion_figure(os.path.join(outdir, "dispersion.png"))
-        diagram_figure(os.path.join(outdir, "diagram.png"))
+    dispersion_figure(os.path.join(outdir, "dispersion.png"))
+    diagram_figure(os.path.join(outdir, "diagram.png"))
     nonlinear_figures(outdir)
     band_figure(os.path.join(outdir, "band_profile.png"))
     two_d_figures(outdir)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else "docs/figures/continuum")
+    main(sys.argv[1] if len(sys.argv) > 1 else "docs/figures/continuum")

@@ -32,7 +32,7 @@ void invert(int n, Complex *m)
     for (int r = col + 1; r < n; ++r)
       if (std::abs(work[r][col]) > std::abs(work[pivot][col])) pivot = r;
     if (std::abs(work[pivot][col]) == 0.0)
-      throw std::runtime_error("continuum: singular implicit operator (3 - 2 dt L(k))");
+      throw std::runtime_error("dt: the implicit operator 3 - 2 dt L(k) is singular for this step; change dt");
     if (pivot != col)
       for (int c = 0; c < 2 * n; ++c) std::swap(work[pivot][c], work[col][c]);
     const Complex inv = 1.0 / work[col][col];
@@ -51,7 +51,7 @@ void invert(int n, Complex *m)
 
 // FFTW plans (made once, FFTW_ESTIMATE: no planning time and the same plan, hence the same
 // round-off, on every run) and the aligned buffers they run on.
-struct Solver::Plans {
+struct Solver::Workspace {
   double *grid = nullptr;
   fftw_complex *spectrum = nullptr;
   fftw_plan forward = nullptr, backward = nullptr;
@@ -59,18 +59,21 @@ struct Solver::Plans {
   std::vector<double> delta_rho, delta_sigma, polarization, gradient, product;
   std::vector<Complex> mode_scratch;
 
-  Plans(const Grid &g, int num_modes)
+  Workspace(const Grid &g, int num_modes)
   {
     const int n = g.num_points();
     grid = fftw_alloc_real(n);
     spectrum = fftw_alloc_complex(num_modes);
-    if (!grid || !spectrum) throw std::runtime_error("continuum: out of memory for FFTW buffers");
-    const int rank = g.dim;
     const int dims[2] = {g.dim == 2 ? g.ny : g.nx, g.nx};   // row-major, x fastest
     const int *shape = g.dim == 2 ? dims : dims + 1;
-    forward = fftw_plan_dft_r2c(rank, shape, grid, spectrum, FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r(rank, shape, spectrum, grid, FFTW_ESTIMATE);
-    if (!forward || !backward) throw std::runtime_error("continuum: FFTW could not plan the transforms");
+    if (grid && spectrum) {
+      forward = fftw_plan_dft_r2c(g.dim, shape, grid, spectrum, FFTW_ESTIMATE);
+      backward = fftw_plan_dft_c2r(g.dim, shape, spectrum, grid, FFTW_ESTIMATE);
+    }
+    if (!forward || !backward) {
+      release();
+      throw std::runtime_error("continuum: no memory for the FFTW buffers or plans");
+    }
     delta_rho.resize(n);
     delta_sigma.resize(n);
     polarization.resize(n);
@@ -78,12 +81,17 @@ struct Solver::Plans {
     product.resize(n);
     mode_scratch.resize(num_modes);
   }
-  ~Plans()
+  ~Workspace() { release(); }
+
+  void release()
   {
     if (forward) fftw_destroy_plan(forward);
     if (backward) fftw_destroy_plan(backward);
     fftw_free(grid);
     fftw_free(spectrum);
+    forward = backward = nullptr;
+    grid = nullptr;
+    spectrum = nullptr;
   }
 };
 
@@ -113,7 +121,7 @@ Solver::Solver(const Grid &grid, const ModelParameters &p, double dt) : grid_(gr
   num_fields_ = 2 + (p.tau > 0.0 ? grid_.dim : 0);
   num_modes_ = grid_.ny * (grid_.nx / 2 + 1);
   build_modes();
-  plans_ = std::make_unique<Plans>(grid_, num_modes_);
+  work_ = std::make_unique<Workspace>(grid_, num_modes_);
   state_.assign(static_cast<size_t>(num_fields_) * num_modes_, 0.0);
   nonlinear_.assign(2 * static_cast<size_t>(num_modes_), 0.0);
 }
@@ -187,17 +195,17 @@ void Solver::factorise(double c0, double c1, std::vector<Complex> &out) const
 void Solver::to_grid(const Complex *spectrum, double *values) const
 {
   // c2r overwrites its input: transform a copy
-  std::copy(spectrum, spectrum + num_modes_, reinterpret_cast<Complex *>(plans_->spectrum));
-  fftw_execute(plans_->backward);
-  std::copy(plans_->grid, plans_->grid + grid_.num_points(), values);
+  std::copy(spectrum, spectrum + num_modes_, reinterpret_cast<Complex *>(work_->spectrum));
+  fftw_execute(work_->backward);
+  std::copy(work_->grid, work_->grid + grid_.num_points(), values);
 }
 
 void Solver::from_grid(const double *values, Complex *spectrum) const
 {
-  std::copy(values, values + grid_.num_points(), plans_->grid);
-  fftw_execute(plans_->forward);
+  std::copy(values, values + grid_.num_points(), work_->grid);
+  fftw_execute(work_->forward);
   const double scale = 1.0 / grid_.num_points();
-  const Complex *s = reinterpret_cast<const Complex *>(plans_->spectrum);
+  const Complex *s = reinterpret_cast<const Complex *>(work_->spectrum);
   for (int m = 0; m < num_modes_; ++m) spectrum[m] = kept_[m] ? s[m] * scale : 0.0;
 }
 
@@ -214,7 +222,7 @@ void Solver::slaved_polarization(const Complex *rho_hat, const Complex *sigma_ha
 
 void Solver::nonlinear_terms(const std::vector<Complex> &state, std::vector<Complex> &out)
 {
-  Plans &w = *plans_;
+  Workspace &w = *work_;
   const int n = grid_.num_points();
   const Complex *rho_hat = state.data(), *sigma_hat = state.data() + num_modes_;
   Complex *scratch = w.mode_scratch.data();

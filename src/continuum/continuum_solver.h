@@ -74,14 +74,10 @@ class Solver {
   void step(int steps);
 
   double time() const { return time_; }
-  double dt() const { return dt_; }
-  bool has_state() const { return has_state_; }
-  const Grid &grid() const { return grid_; }
-  const ModelParameters &parameters() const { return params_; }
   bool relaxed_polarization() const { return params_.tau > 0.0; }
 
  private:
-  struct Plans;
+  struct Workspace;
   using Complex = std::complex<double>;
 
   void build_modes();
@@ -113,7 +109,7 @@ class Solver {
   std::vector<Complex> state_, previous_state_;
   std::vector<Complex> nonlinear_, previous_nonlinear_;   // rho and sigma rows only
   std::vector<Complex> sbdf2_inverse_;                    // (3 - 2 dt L)^{-1} per mode
-  std::unique_ptr<Plans> plans_;
+  std::unique_ptr<Workspace> work_;
 };
 
 }  // namespace ActiveGrain::Continuum
