@@ -14,9 +14,9 @@ sets it), else in the repository's ``build*/lib`` folders.
 .. code-block:: python
 
    from activegrain import continuum
-   p = continuum.ContinuumParameters(rho0=1, sigma0=0.5, D_rho=0.05, D_sigma=0.05,
-                                     D_rho_sigma=1, alpha=1, u0=1, A=1, a=1, K=1)
-   run = continuum.simulate(p, n=256, length=100.0, dt=0.01, t_end=200, frames=100)
+   p = continuum.ContinuumParameters(rho0=1, sigma0=0.5, D_rho=0.2, D_sigma=0.2, D_rho_sigma=1,
+                                     alpha=1, u0=1, A=1, a=1, K=1, proportional_cross_diffusion=True)
+   run = continuum.simulate(p, n=512, length=100.0, dt=2.5e-3, t_end=600, frames=150)
    continuum.kymograph(run, "kymograph.png"); continuum.movie(run, "run.gif")
 """
 import ctypes
@@ -37,7 +37,8 @@ STATUS_OK, STATUS_BAD_ARGUMENT, STATUS_NOT_FINITE = 0, 1, 2
 @dataclass
 class ContinuumParameters(theory.LinearParameters):
     """The model's parameters (those of :class:`theory.LinearParameters`; rho0, sigma0 are
-    the mean densities), ``tau`` (0 slaves P to the gradients, > 0 lets it relax) and
+    the mean densities of the starts made here; the solver takes its means from the fields it
+    is given), ``tau`` (0 slaves P to the gradients, > 0 lets it relax) and
     ``proportional_cross_diffusion`` (False: the paper's D_rho_sigma grad sigma; True: times
     rho/rho0, and D_sigma_rho grad rho times sigma/sigma0 -- the same linear theory, and beads
     are no longer pushed into negative density)."""
