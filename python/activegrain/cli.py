@@ -190,9 +190,9 @@ def cmd_continuum(args, out):
                                       proportional_cross_diffusion=args.proportional_cross_diffusion)
     n = args.n[0] if len(args.n) == 1 else tuple(args.n)
     length = args.length[0] if len(args.length) == 1 else tuple(args.length)
-    out.write(f"regime (linear, full dispersion relation): {continuum.classify(p)}\n")
     run = continuum.simulate(p, n, length, args.dt, args.t_end, frames=args.frames, amplitude=args.amplitude,
                              seed=args.seed)
+    out.write(f"regime (linear, full dispersion relation): {continuum.classify(p)}\n")
     out.write(f"t = {run.t[-1]:.6g}: rho in [{run.rho[-1].min():.6g}, {run.rho[-1].max():.6g}], "
               f"sigma in [{run.sigma[-1].min():.6g}, {run.sigma[-1].max():.6g}]\n")
     if args.save:

@@ -156,7 +156,7 @@ class Solver:
 
     def set_state(self, rho, sigma, P=None):
         """Set the fields (projected on the dealiased modes) and restart the time at 0.
-        ``P`` (shape (dim, *grid)) only when P relaxes (tau > 0)."""
+        ``P`` (shape (dim, *grid)) only when P relaxes (tau > 0); there it defaults to zero."""
         rho, sigma = self._field(rho, "rho"), self._field(sigma, "sigma")
         if self.relaxed and P is None:
             P = np.zeros((self.dim,) + self.shape)
