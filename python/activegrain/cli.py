@@ -297,6 +297,8 @@ def build_parser():
         p.add_argument(f"--{name}", type=float, default=fld.default,
                        help="mean density" if name in ("rho0", "sigma0") else "model parameter")
     p.add_argument("--tau", type=float, default=0.0, help="P relaxation time (0: P slaved)")
+    p.add_argument("--rho_close", type=float, default=0.0,
+                   help="bead density of close packing (hard-disk stiffness; 0: constant D_rho)")
     p.add_argument("--proportional-cross-diffusion", action="store_true",
                    help="cross-diffusion times the moving species' density (keeps densities positive)")
     p.add_argument("--n", type=int, nargs="+", default=[256], help="grid points: NX (1D) or NX NY (2D)")

@@ -41,16 +41,20 @@ class ContinuumParameters(theory.LinearParameters):
     is given), ``tau`` (0 slaves P to the gradients, > 0 lets it relax) and
     ``proportional_cross_diffusion`` (False: the paper's D_rho_sigma grad sigma; True: times
     rho/rho0, and D_sigma_rho grad rho times sigma/sigma0 -- the same linear theory, and beads
-    are no longer pushed into negative density)."""
+    are no longer pushed into negative density) and ``rho_close`` (0: constant D_rho; > 0: the
+    bead diffusivity follows Henderson's hard-disk stiffness at area fraction rho/rho_close,
+    D_rho at the mean -- the same linear theory, and condensates that stop at close packing)."""
     tau: float = 0.0
     proportional_cross_diffusion: bool = False
+    rho_close: float = 0.0
 
 
 class _Config(ctypes.Structure):
     _fields_ = [("dim", ctypes.c_int), ("nx", ctypes.c_int), ("ny", ctypes.c_int),
                 ("lx", ctypes.c_double), ("ly", ctypes.c_double), ("dt", ctypes.c_double)] + \
                [(name, ctypes.c_double) for name in
-                ("D_rho", "D_sigma", "D_rho_sigma", "D_sigma_rho", "alpha", "u0", "A", "B", "a", "K", "tau")] + \
+                ("D_rho", "D_sigma", "D_rho_sigma", "D_sigma_rho", "alpha", "u0", "A", "B", "a", "K", "tau",
+                 "rho_close")] + \
                [("proportional_cross_diffusion", ctypes.c_int)]
 
 

@@ -72,9 +72,10 @@ def diagram_figure(path):
 def nonlinear_figures(outdir):
     out = lambda name: os.path.join(outdir, name)
     runs = {}
-    # with D_rho = 0.1 the condensing peaks sharpen without bound and the run ends near t = 21
-    # (the same for dt / 5 and twice the points); a weaker instability lasts longer
+    # without a packing limit the condensing peaks sharpen without bound: with D_rho = 0.1 the run
+    # ends near t = 21 (the same for dt / 5 and twice the points), with D_rho = 0.3 near t = 96
     for name, p, L, t_end, n, dt in [("condensation", replace(RECIPROCAL, D_rho=0.3), 100.0, 90.0, 512, 2.5e-3),
+                                     ("close_packing", replace(RECIPROCAL, rho_close=2.5), 100.0, 600.0, 1024, 1e-3),
                                      ("travelling", NON_RECIPROCAL, 100.0, 600.0, 512, 2.5e-3)]:
         t0 = time.time()
         run = C.simulate(p, n, L, dt, t_end, frames=150, amplitude=1e-2, seed=1)

@@ -76,6 +76,7 @@ int ag_continuum_create(const ag_continuum_config *c, ag_continuum **out)
     p.K = c->K;
     p.tau = c->tau;
     p.proportional_cross_diffusion = c->proportional_cross_diffusion != 0;
+    p.rho_close = c->rho_close;
     *out = new ag_continuum{Solver(grid, p, c->dt)};
   });
 }

@@ -28,6 +28,8 @@ typedef struct ag_continuum_config {
   double D_rho, D_sigma, D_rho_sigma, D_sigma_rho;
   double alpha, u0, A, B, a, K;
   double tau;       /* 0: P slaved, (a - K lap) P = A grad rho + B grad sigma; > 0: relaxes */
+  double rho_close; /* 0: constant D_rho; > 0: D_rho scaled by Henderson's hard-disk stiffness at
+                       area fraction rho/rho_close, D_rho itself at the mean */
   int proportional_cross_diffusion; /* 0: D_rho_sigma grad sigma (the paper); 1: times rho/rho0
                                        (and D_sigma_rho grad rho times sigma/sigma0) */
 } ag_continuum_config;

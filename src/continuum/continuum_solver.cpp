@@ -56,7 +56,8 @@ struct Solver::Workspace {
   fftw_complex *spectrum = nullptr;
   fftw_plan forward = nullptr, backward = nullptr;
   // scratch of nonlinear_terms
-  std::vector<double> delta_rho, delta_sigma, polarization, gradient, product;
+  std::vector<double> delta_rho, delta_sigma, polarization, gradient_rho, gradient_sigma, excess_diffusivity,
+      product;
   std::vector<Complex> mode_scratch;
 
   Workspace(const Grid &g, int num_modes)
@@ -77,7 +78,9 @@ struct Solver::Workspace {
     delta_rho.resize(n);
     delta_sigma.resize(n);
     polarization.resize(n);
-    gradient.resize(n);
+    gradient_rho.resize(n);
+    gradient_sigma.resize(n);
+    excess_diffusivity.resize(n);
     product.resize(n);
     mode_scratch.resize(num_modes);
   }
@@ -106,8 +109,10 @@ Solver::Solver(const Grid &grid, const ModelParameters &p, double dt) : grid_(gr
   require(grid.dim == 1 || positive_finite(grid.ly), "ly: must be positive");
   if (grid_.dim == 1) grid_.ny = 1;
   require(positive_finite(dt), "dt: must be positive");
-  for (double v : {p.D_rho, p.D_sigma, p.D_rho_sigma, p.D_sigma_rho, p.alpha, p.u0, p.A, p.B, p.a, p.K, p.tau})
+  for (double v : {p.D_rho, p.D_sigma, p.D_rho_sigma, p.D_sigma_rho, p.alpha, p.u0, p.A, p.B, p.a, p.K, p.tau,
+                   p.rho_close})
     require(std::isfinite(v), "parameters: all must be finite");
+  require(p.rho_close >= 0.0, "rho_close: must not be negative (0: constant D_rho)");
   require(p.a > 0.0, "a: must be positive (the isotropic phase; P has no cubic term to saturate it)");
   require(p.K >= 0.0, "K: must not be negative");
   require(p.tau >= 0.0, "tau: must not be negative (0 slaves P to the gradients)");
@@ -154,7 +159,7 @@ void Solver::linear_operator(int m, Complex *L) const
   const ModelParameters &p = params_;
   const double kx = kx_[m], ky = ky_[m], k2 = kx * kx + ky * ky;
   const double c[2] = {p.alpha * rho0_, p.u0 * sigma0_};   // rho0 alpha, sigma0 u0
-  const double D[2][2] = {{p.D_rho, p.D_rho_sigma}, {p.D_sigma_rho, p.D_sigma}};
+  const double D[2][2] = {{D_implicit_, p.D_rho_sigma}, {p.D_sigma_rho, p.D_sigma}};
   const int n = num_fields_;
   for (int r = 0; r < 2; ++r)
     for (int col = 0; col < 2; ++col) L[r * n + col] = -D[r][col] * k2;
@@ -235,6 +240,21 @@ void Solver::nonlinear_terms(const std::vector<Complex> &state, std::vector<Comp
   scratch[0] = 0.0;
   to_grid(scratch, w.delta_sigma.data());
 
+  // close packing: the bead diffusivity beyond the implicit one, point by point
+  const bool packing = params_.rho_close > 0.0;
+  if (packing) {
+    max_bead_diffusivity_ = 0.0;
+    for (int x = 0; x < n; ++x) {
+      const double rho = rho0_ + w.delta_rho[x];
+      if (!(rho < params_.rho_close))
+        throw StateNotFinite("rho reached rho_close at t = " + std::to_string(time_) +
+                             ": the bead stiffness diverges there; a smaller dt resolves the approach");
+      const double D = bead_diffusivity(rho);
+      max_bead_diffusivity_ = std::max(max_bead_diffusivity_, D);
+      w.excess_diffusivity[x] = D - D_implicit_;
+    }
+  }
+
   std::fill(out.begin(), out.end(), 0.0);
   Complex *out_rho = out.data(), *out_sigma = out.data() + num_modes_;
   const bool proportional = params_.proportional_cross_diffusion;
@@ -246,26 +266,41 @@ void Solver::nonlinear_terms(const std::vector<Complex> &state, std::vector<Comp
       slaved_polarization(rho_hat, sigma_hat, d, scratch);
       to_grid(scratch, w.polarization.data());
     }
-    // the velocity each species' excess moves with: alpha P (- D_rho_sigma grad sigma / rho0)
+    if (proportional || packing) {
+      for (int m = 0; m < num_modes_; ++m) scratch[m] = I * k[m] * rho_hat[m];
+      to_grid(scratch, w.gradient_rho.data());
+    }
     if (proportional) {
       for (int m = 0; m < num_modes_; ++m) scratch[m] = I * k[m] * sigma_hat[m];
-      to_grid(scratch, w.gradient.data());
+      to_grid(scratch, w.gradient_sigma.data());
     }
+    // the nonlinear part of each current, component d:
+    // beads  delta rho (alpha P - D_rho_sigma grad sigma / rho0) - (D_rho(rho) - D_implicit) grad rho
+    // rods   delta sigma (u0 P - D_sigma_rho grad rho / sigma0)
     for (int x = 0; x < n; ++x)
       w.product[x] = w.delta_rho[x] * (params_.alpha * w.polarization[x] -
-                                       (proportional ? params_.D_rho_sigma / rho0_ * w.gradient[x] : 0.0));
+                                       (proportional ? params_.D_rho_sigma / rho0_ * w.gradient_sigma[x] : 0.0)) -
+                     (packing ? w.excess_diffusivity[x] * w.gradient_rho[x] : 0.0);
     from_grid(w.product.data(), scratch);
     for (int m = 0; m < num_modes_; ++m) out_rho[m] -= I * k[m] * scratch[m];
-    if (proportional) {
-      for (int m = 0; m < num_modes_; ++m) scratch[m] = I * k[m] * rho_hat[m];
-      to_grid(scratch, w.gradient.data());
-    }
     for (int x = 0; x < n; ++x)
       w.product[x] = w.delta_sigma[x] * (params_.u0 * w.polarization[x] -
-                                         (proportional ? params_.D_sigma_rho / sigma0_ * w.gradient[x] : 0.0));
+                                         (proportional ? params_.D_sigma_rho / sigma0_ * w.gradient_rho[x] : 0.0));
     from_grid(w.product.data(), scratch);
     for (int m = 0; m < num_modes_; ++m) out_sigma[m] -= I * k[m] * scratch[m];
   }
+}
+
+double Solver::bead_diffusivity(double rho) const
+{
+  if (params_.rho_close == 0.0) return params_.D_rho;
+  // dPi/drho / T of Henderson's Pi = rho T (1 + eta^2/8) / (1 - eta)^2, eta = rho / rho_close
+  auto stiffness = [](double eta) {
+    const double gap = 1.0 - eta;
+    return (1.0 + eta * eta / 8.0) / (gap * gap) + eta * eta / 4.0 / (gap * gap) +
+           2.0 * eta * (1.0 + eta * eta / 8.0) / (gap * gap * gap);
+  };
+  return params_.D_rho * stiffness(rho / params_.rho_close) / stiffness(rho0_ / params_.rho_close);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -293,9 +328,13 @@ void Solver::set_state(const double *rho, const double *sigma, const double *P)
   sigma0_ = state_[num_modes_].real();
   if (params_.proportional_cross_diffusion && !(rho0_ > 0.0 && sigma0_ > 0.0))
     throw std::invalid_argument("rho, sigma: proportional cross-diffusion needs positive mean densities");
+  if (params_.rho_close > 0.0 && !(rho0_ > 0.0 && rho0_ < params_.rho_close))
+    throw std::invalid_argument("rho: its mean must lie between 0 and rho_close");
+  D_implicit_ = params_.D_rho;
   factorise(3.0, 2.0, sbdf2_inverse_);
   time_ = 0.0;
   steps_taken_ = 0;
+  restart_ = true;
   has_state_ = true;
 }
 
@@ -328,7 +367,14 @@ void Solver::step(int steps)
   std::vector<Complex> euler_inverse;
   for (int s = 0; s < steps; ++s) {
     nonlinear_terms(state_, nonlinear_);
-    const bool first = steps_taken_ == 0;
+    if (max_bead_diffusivity_ > D_implicit_) {
+      // the explicit remainder must stay a correction: a new split, a new L, a restart
+      D_implicit_ = 1.5 * max_bead_diffusivity_;
+      factorise(3.0, 2.0, sbdf2_inverse_);
+      restart_ = true;
+      nonlinear_terms(state_, nonlinear_);
+    }
+    const bool first = restart_;
     if (first) factorise(1.0, 1.0, euler_inverse);
     const std::vector<Complex> &inverse = first ? euler_inverse : sbdf2_inverse_;
     std::vector<Complex> next(state_.size());
@@ -354,6 +400,7 @@ void Solver::step(int steps)
     previous_nonlinear_.swap(nonlinear_);
     if (nonlinear_.size() != previous_nonlinear_.size()) nonlinear_.resize(previous_nonlinear_.size());
     ++steps_taken_;
+    restart_ = false;
     time_ = steps_taken_ * dt_;
     check_finite();
   }

@@ -22,6 +22,14 @@
 // diffusion and fast P relaxation cost nothing in step size. Products are formed on the grid and
 // dealiased by the 2/3 rule: only modes with 3 |m| < n (each direction) are kept, in the state too.
 //
+// Close packing (rho_close > 0): the bead current -D_rho grad rho becomes -D_rho(rho) grad rho
+// with D_rho(rho) = D_rho h(rho/rho_close) / h(rho0/rho_close), h(eta) = dPi/drho of Henderson's
+// hard-disk pressure Pi = rho T (1 + eta^2/8) / (1 - eta)^2 at area fraction eta = rho/rho_close
+// (theory.HendersonEOS): the stiffness diverges as rho -> rho_close, and at the mean it is D_rho,
+// so the linear theory is unchanged. L(k) takes the bead diffusivity D_implicit >= max D_rho(rho)
+// (raised by half again when the state exceeds it, with one IMEX Euler step to restart), and the
+// rest, div((D_rho(rho) - D_implicit) grad rho), is explicit (a stabilised split).
+//
 // Well-posedness: with D_rho = D_sigma = D_sigma_rho = 0 the growth rate tends to a positive
 // constant (tr(c g)/K) as k -> infinity, slaved or relaxed P alike, so the grid scale grows as
 // fast as any other and nothing converges with resolution. The constructor therefore demands a
@@ -48,6 +56,7 @@ struct ModelParameters {
   double alpha = 0.0, u0 = 0.0, A = 0.0, B = 0.0, a = 1.0, K = 0.0;
   double tau = 0.0;     // 0: P slaved to the gradients; > 0: P relaxes on this time scale
   bool proportional_cross_diffusion = false;
+  double rho_close = 0.0;  // 0: constant D_rho; > 0: bead stiffness of a hard-disk fluid jamming there
 };
 
 // Thrown by Solver::step when the state stops being finite.
@@ -91,13 +100,17 @@ class Solver {
   void to_grid(const Complex *spectrum, double *values) const;
   void from_grid(const double *values, Complex *spectrum) const;
   void check_finite() const;
+  double bead_diffusivity(double rho) const;
 
   Grid grid_;
   ModelParameters params_;
   double dt_;
   double time_ = 0.0;
   bool has_state_ = false;
-  int steps_taken_ = 0;            // since set_state: the first step is IMEX Euler
+  int steps_taken_ = 0;            // since set_state
+  bool restart_ = true;            // the next step is IMEX Euler (after set_state, or a new L)
+  double D_implicit_ = 0.0;        // bead diffusivity in L(k): D_rho, or >= max D_rho(rho)
+  double max_bead_diffusivity_ = 0.0;   // of the state nonlinear_terms last saw
   int num_fields_;                 // rho, sigma (, P components when relaxed)
   int num_modes_;                  // r2c modes: ny x (nx/2 + 1)
   double rho0_ = 0.0, sigma0_ = 0.0;

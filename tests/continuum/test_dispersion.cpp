@@ -204,6 +204,16 @@ TEST(Dispersion, NonReciprocalProportionalCrossDiffusion1D)
   }
 }
 
+// close packing changes D_rho away from the mean only: the same linear theory
+TEST(Dispersion, ClosePackingKeepsTheLinearTheory)
+{
+  Background b = reciprocal();
+  b.p.rho_close = 1.5;
+  const auto r = measure_rates(line(96, 8 * PI), b, 1e-3, 3.0, LINE_MODES);
+  ASSERT_TRUE(any_growing(r));
+  expect_within(r, 0.01, "reciprocal, close packing 1D");
+}
+
 TEST(Dispersion, ReciprocalRelaxed1D)
 {
   const auto r = measure_rates(line(96, 8 * PI), reciprocal(0.5), 1e-3, 3.0, LINE_MODES);

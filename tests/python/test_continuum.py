@@ -55,7 +55,7 @@ def test_relaxed_polarization_is_state():
 
 
 @pytest.mark.parametrize("change, name", [({"D_rho": 0.0, "D_sigma": 0.0}, "D_rho"), ({"K": -1.0}, "K"),
-                                          ({"tau": -1.0}, "tau")])
+                                          ({"tau": -1.0}, "tau"), ({"rho_close": -1.0}, "rho_close")])
 def test_bad_parameters_name_themselves(change, name):
     p = C.ContinuumParameters(**{**RECIPROCAL.__dict__, **change})
     with pytest.raises(ValueError, match=f"^{name}"):
@@ -74,6 +74,17 @@ def test_bad_grid_and_fields():
             s.set_state(np.ones(32), np.ones(32), np.zeros((1, 32)))   # P is slaved here
         with pytest.raises(ValueError, match="set_state"):
             s.step(1)
+
+
+def test_close_packing_stops_condensation():
+    """Beads condense up to, never past, rho_close; the mean must lie below it."""
+    p = C.ContinuumParameters(**{**RECIPROCAL.__dict__, "rho_close": 2.0, "proportional_cross_diffusion": True})
+    run = C.simulate(p, 256, 50.0, 2.5e-3, 150.0, frames=3, amplitude=1e-2)
+    assert 1.5 < run.rho[-1].max() < 2.0
+    assert run.rho[-1].mean() == pytest.approx(run.rho[0].mean(), rel=1e-13)
+    with C.Solver(p, 32, 10.0, 1e-2) as s:
+        with pytest.raises(ValueError, match="^rho"):
+            s.set_state(np.full(32, 2.5), np.full(32, 0.2))
 
 
 def test_blow_up_raises():
