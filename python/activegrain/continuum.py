@@ -287,6 +287,17 @@ def measured_growth_rate(params, length, k_index, n=64, dt=1e-3, t_end=2.0, ampl
         return float(np.log(amplitude_now() / a0) / s.time)
 
 
+def bead_diffusivity(params, rho):
+    """D_rho(rho) of the solver: D_rho, or with close packing D_rho times Henderson's hard-disk
+    stiffness (:class:`theory.HendersonEOS`) at area fraction rho/rho_close over its value at
+    rho0."""
+    if params.rho_close <= 0:
+        return params.D_rho * np.ones_like(np.asarray(rho, float))
+    # HendersonEOS's eta = pi rho d^2 / 4: a disc diameter that puts eta = 1 at rho_close
+    eos = theory.HendersonEOS(T=1.0, d=np.sqrt(4 / (np.pi * params.rho_close)))
+    return params.D_rho * eos.stiffness(rho) / eos.stiffness(params.rho0)
+
+
 # --------------------------------------------------------------------------- stability diagram
 
 def classify(params, k_max=None, n_k=400):

@@ -94,38 +94,42 @@ def nonlinear_figures(outdir):
 
 def band_figure(path):
     """A wave travelling one way (seeded by the complex eigenmode, before it turns into a
-    standing pattern): the bead profile ahead of the rod band against eq. 5's exponential."""
-    p, L, n, m = NON_RECIPROCAL, 30.0, 512, 4
-    run = C.simulate(p, n, L, 2e-3, 200.0, frames=200, start=C.eigenmode_start(p, n, L, m))
+    standing pattern), beads jamming at rho_close: the bead profile ahead of the rod band
+    against eq. 5's exponential, with the bead stiffness of these equations."""
+    p, L, n, m = replace(NON_RECIPROCAL, rho_close=1.6), 30.0, 512, 4
+    run = C.simulate(p, n, L, 1e-3, 200.0, frames=200, start=C.eigenmode_start(p, n, L, m))
     _, v0 = C.band_track(run)
     d, rho, sigma = C.profile_ahead(run)
-    # ahead of the bead maximum that leads the rod band, fit rho_far + (rho+ - rho_far) exp(-d / l)
+    # the bead front ahead of the rods: from the bead maximum rho+ to the next minimum; its
+    # length (rho+ - rho_min) / max |d rho/dx| (l itself for an exponential decay)
     spacing = L / m
     i0 = int(np.argmax(np.where(d < spacing, rho, -np.inf)))
     i1 = i0 + int(np.argmin(rho[i0:i0 + int(spacing / 2 / (d[1] - d[0]))]))
-    sel = slice(i0, i1 + 1)
-    from scipy.optimize import curve_fit
-    f = lambda x, rp, ell, r0: r0 + (rp - r0) * np.exp(-(x - d[i0]) / ell)
-    (rp, ell, r0), _ = curve_fit(f, d[sel], rho[sel], p0=(rho[i0], 1.0, rho[i1]))
-    # eq. 5 with the beads' own stiffness: ideal (Pi' = gamma D_rho), or with the current
-    # alpha rho P of P slaved to the beads' own gradient, Pi'/gamma = D_rho - alpha A rho / a
-    ell_bare = p.D_rho / abs(v0)
-    stiffness_slaved = p.D_rho - p.alpha * p.A * rp / p.a
+    ell = (rho[i0] - rho[i1]) / np.max(-np.gradient(rho[i0:i1 + 1], d[1] - d[0]))
+    # eq. 5's l+ = Pi'(rho+) / (gamma v0) with the beads' stiffness of these equations: the
+    # hard-disk one, Pi'/gamma = D_rho(rho+), and with the current alpha rho P of P slaved to the
+    # beads' own gradient, Pi'/gamma = D_rho(rho+) - alpha A rho+ / a
+    stiffness = C.bead_diffusivity(p, rho[i0])
+    ell_hard = stiffness / abs(v0)
+    ell_slaved = (stiffness - p.alpha * p.A * rho[i0] / p.a) / abs(v0)
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
     ax.plot(d, rho, label=r"$\rho$ (beads)")
     ax.plot(d, sigma, label=r"$\sigma$ (rods)")
-    ax.plot(d[sel], f(d[sel], rp, ell, r0), "k--", label=rf"exponential fit, $\ell$ = {ell:.2f}")
-    ax.plot(d[sel], r0 + (rp - r0) * np.exp(-(d[sel] - d[i0]) / ell_bare), "k:",
-            label=rf"eq. 5, $\Pi' = \gamma D_\rho$: $\ell_+$ = {ell_bare:.2f}")
+    x = d[i0] + np.linspace(0, spacing / 2, 100)
+    for ell5, style, what in ((ell_hard, ":", r"D_\rho(\rho_+)"),
+                              (ell_slaved, "-.", r"D_\rho(\rho_+) - \alpha A \rho_+/a")):
+        ax.plot(x, rho[i1] + (rho[i0] - rho[i1]) * np.exp(-(x - d[i0]) / ell5), "k" + style, lw=1,
+                label=rf"eq. 5, $\Pi'/\gamma = {what}$: $\ell_+$ = {ell5:.2f}")
     ax.set_xlim(0, 2 * spacing)
     ax.set_xlabel("distance ahead of the rod maximum (direction of motion)")
-    ax.legend(fontsize=8)
-    ax.set_title(f"travelling wave, speed {abs(v0):.3f}", fontsize=10)
+    ax.legend(fontsize=7, loc="lower right")
+    ax.set_title(f"travelling wave, speed {abs(v0):.3f}, beads jam at {p.rho_close:g}; "
+                 f"front length {ell:.2f}", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
-    print(f"band: speed {abs(v0):.4f}, fitted ell {ell:.3f} (rho+ {rp:.3f}, far {r0:.3f}); eq. 5 with "
-          f"Pi' = gamma D_rho: {ell_bare:.3f}; D_rho - alpha A rho+ / a = {stiffness_slaved:.3f}")
+    print(f"band: speed {abs(v0):.4f}, rho+ {rho[i0]:.3f}, rho_min {rho[i1]:.3f}, front length {ell:.3f}; eq. 5 with "
+          f"D_rho(rho+) = {stiffness:.3f}: {ell_hard:.3f}; with D_rho(rho+) - alpha A rho+ / a: {ell_slaved:.3f}")
     return run
 
 
