@@ -1,4 +1,4 @@
-"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory} ...``.
+"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory,continuum} ...``.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
@@ -183,6 +183,30 @@ def cmd_theory(args, out):
                                       pf, args.plot)
 
 
+def cmd_continuum(args, out):
+    from . import continuum
+    names = [f for f in continuum.ContinuumParameters.__dataclass_fields__ if f != "proportional_cross_diffusion"]
+    p = continuum.ContinuumParameters(**{n: getattr(args, n) for n in names},
+                                      proportional_cross_diffusion=args.proportional_cross_diffusion)
+    n = args.n[0] if len(args.n) == 1 else tuple(args.n)
+    length = args.length[0] if len(args.length) == 1 else tuple(args.length)
+    run = continuum.simulate(p, n, length, args.dt, args.t_end, frames=args.frames, amplitude=args.amplitude,
+                             seed=args.seed)
+    out.write(f"regime (linear, full dispersion relation): {continuum.classify(p)}\n")
+    out.write(f"t = {run.t[-1]:.6g}: rho in [{run.rho[-1].min():.6g}, {run.rho[-1].max():.6g}], "
+              f"sigma in [{run.sigma[-1].min():.6g}, {run.sigma[-1].max():.6g}]\n")
+    if args.save:
+        np.savez_compressed(args.save, t=run.t, x=run.x, y=run.y if run.y is not None else np.empty(0),
+                            rho=run.rho, sigma=run.sigma, P=run.P)
+        out.write(f"wrote {args.save}\n")
+    if args.kymograph:
+        (continuum.kymograph if run.dim == 1 else continuum.snapshot)(run, args.kymograph)
+        out.write(f"wrote {args.kymograph}\n")
+    if args.movie:
+        continuum.movie(run, args.movie, fps=args.fps)
+        out.write(f"wrote {args.movie}\n")
+
+
 def build_parser():
     ap = argparse.ArgumentParser(prog="python3 -m activegrain", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -267,6 +291,28 @@ def build_parser():
     p.add_argument("--d", type=float, default=1.0, help="pointforce: disc diameter")
     p.add_argument("--plot", help="save a plot")
     p.set_defaults(func=cmd_theory)
+
+    p = sub.add_parser("continuum", help="run the continuum theory (FFTW solver): pictures, movie, fields")
+    for name, fld in theory.LinearParameters.__dataclass_fields__.items():
+        p.add_argument(f"--{name}", type=float, default=fld.default,
+                       help="mean density" if name in ("rho0", "sigma0") else "model parameter")
+    p.add_argument("--tau", type=float, default=0.0, help="P relaxation time (0: P slaved)")
+    p.add_argument("--rho_close", type=float, default=0.0,
+                   help="bead density of close packing (hard-disk stiffness; 0: constant D_rho)")
+    p.add_argument("--proportional-cross-diffusion", action="store_true",
+                   help="cross-diffusion times the moving species' density (keeps densities positive)")
+    p.add_argument("--n", type=int, nargs="+", default=[256], help="grid points: NX (1D) or NX NY (2D)")
+    p.add_argument("--length", type=float, nargs="+", default=[100.0], help="box: LX (1D) or LX LY")
+    p.add_argument("--dt", type=float, default=5e-3)
+    p.add_argument("--t-end", type=float, default=100.0)
+    p.add_argument("--frames", type=int, default=100)
+    p.add_argument("--amplitude", type=float, default=1e-3, help="relative noise of the uniform start")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--save", help="write t, x, y, rho, sigma, P (.npz)")
+    p.add_argument("--kymograph", help="space-time picture (1D) or last frame (2D), png")
+    p.add_argument("--movie", help="animation (.gif)")
+    p.add_argument("--fps", type=int, default=10)
+    p.set_defaults(func=cmd_continuum)
     return ap
 
 
@@ -274,7 +320,7 @@ def main(argv=None, out=None):
     args = build_parser().parse_args(argv)
     try:
         args.func(args, out or sys.stdout)
-    except (ValueError, RuntimeError, OSError) as e:
+    except (ValueError, RuntimeError, OSError, FloatingPointError) as e:
         sys.stderr.write(f"activegrain {args.command}: {e}\n")
         return 1
     return 0
