@@ -152,6 +152,35 @@ void ContactSolver::solve_isolated()
     }
 }
 
+// The impulses of one Jacobi step (step_impulse_, per island contact): summed per body first, so
+// that each body's inverse inertia is applied once.
+void ContactSolver::apply_all(const std::vector<int> &island)
+{
+  for (int i : island) {
+    const Contact &c = contacts_[i];
+    body_momentum_[c.body1] = body_angular_[c.body1] = body_momentum_[c.body2] = body_angular_[c.body2] = Vec3();
+  }
+  for (std::size_t k = 0; k < island.size(); ++k) {
+    Contact &c = contacts_[island[k]];
+    const Vec3 &J = step_impulse_[k];
+    c.impulse += J;
+    body_momentum_[c.body1] -= J;
+    body_angular_[c.body1] -= cross(c.r1, J);
+    body_momentum_[c.body2] += J;
+    body_angular_[c.body2] += cross(c.r2, J);
+  }
+  for (int i : island) {
+    const Contact &c = contacts_[i];
+    for (int b : {c.body1, c.body2}) {
+      RigidBodyState &body = bodies_[b];
+      if (body.is_static() || norm2(body_momentum_[b]) + norm2(body_angular_[b]) == 0.0) continue;
+      body.v += body_momentum_[b] * body.inv_mass;
+      body.omega += body.inv_inertia * body_angular_[b];
+      body_momentum_[b] = body_angular_[b] = Vec3();    // applied: once per body
+    }
+  }
+}
+
 int ContactSolver::share(const Contact &c) const
 {
   return std::max(bodies_[c.body1].is_static() ? 1 : body_contacts_[c.body1],
@@ -245,11 +274,7 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       if (stuck) friction *= 1.0 / share(c);
       step_impulse_[k] = c.n * dp + friction;
     }
-    for (std::size_t k = 0; k < size; ++k) {
-      Contact &c = contacts_[island[k]];
-      apply(c, step_impulse_[k]);
-      c.impulse += step_impulse_[k];
-    }
+    apply_all(island);
     // A plastic contact (e = 0) passes its peak within the kick that turns its normal velocity:
     // the kick's part after the peak would return energy it must not, so it is taken back (all
     // from the same state, as the kick).
@@ -260,17 +285,14 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       step_impulse_[k] = c.material.e == 0.0 && before < 0.0 ? step_impulse_[k] : Vec3();
       if (norm2(step_impulse_[k]) == 0.0) continue;
       const double after = dot(relative_velocity(c), c.n);
-      step_impulse_[k] = after > 0.0 ? step_impulse_[k] * (after / (after - before)) : Vec3();
+      step_impulse_[k] = after > 0.0 ? step_impulse_[k] * (-after / (after - before)) : Vec3();
       plastic_turned = plastic_turned || after > 0.0;
     }
-    if (plastic_turned)
-      for (std::size_t k = 0; k < size; ++k) {
-        Contact &c = contacts_[island[k]];
-        if (norm2(step_impulse_[k]) == 0.0) continue;
-        apply(c, -step_impulse_[k]);
-        c.impulse -= step_impulse_[k];
-        c.unloading = true;
-      }
+    if (plastic_turned) {
+      apply_all(island);
+      for (std::size_t k = 0; k < size; ++k)
+        if (norm2(step_impulse_[k]) > 0.0) contacts_[island[k]].unloading = true;
+    }
     measure_velocities();
     for (std::size_t k = 0; k < size; ++k) {
       Contact &c = contacts_[island[k]];
@@ -303,13 +325,9 @@ double ContactSolver::separate_overlaps(const std::vector<int> &island)
       ++body_contacts_[c.body2];
     }
     if (largest == 0.0) break;
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      Contact &c = contacts_[island[k]];
-      if (norm2(step_impulse_[k]) == 0.0) continue;
-      const Vec3 J = step_impulse_[k] * (1.0 / share(c));
-      apply(c, J);
-      c.impulse += J;
-    }
+    for (std::size_t k = 0; k < island.size(); ++k)
+      if (norm2(step_impulse_[k]) > 0.0) step_impulse_[k] *= 1.0 / share(contacts_[island[k]]);
+    apply_all(island);
   }
   return largest;
 }
@@ -326,6 +344,8 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   Result result;
   body_stiffness_.assign(bodies_.size(), 0.0);
   body_contacts_.assign(bodies_.size(), 0);
+  body_momentum_.assign(bodies_.size(), Vec3());
+  body_angular_.assign(bodies_.size(), Vec3());
   for (const std::vector<int> &island : islands_) {
     const int substeps = compliant_impact(island, settings);
     const double shortfall = separate_overlaps(island);

@@ -53,7 +53,7 @@ class ContactSolver {
     bool unloading = false;
   };
   struct Settings {
-    int resolution = 300;    // sub-steps per half oscillation of the stiffest engaged contact
+    int resolution = 150;    // sub-steps per half oscillation of the stiffest engaged contact
     int max_substeps = 1000000;    // per island; then the island's impact stops where it is
   };
   struct Result {
@@ -93,6 +93,7 @@ class ContactSolver {
 
   Vec3 relative_velocity(const Contact &c) const;
   void apply(const Contact &c, const Vec3 &J);
+  void apply_all(const std::vector<int> &island);
   // Bodies' counts of the island's contacts in a Jacobi step: a share of each body's impulse.
   int share(const Contact &c) const;
 
@@ -103,7 +104,8 @@ class ContactSolver {
   // Scratch of the compliant impact, per body and per island contact.
   std::vector<double> body_stiffness_;       // engaged spring stiffness on the body
   std::vector<int> body_contacts_;           // loaded (or pushed) contacts on the body
-  std::vector<Vec3> step_impulse_;
+  std::vector<Vec3> step_impulse_;           // one Jacobi step's impulse per island contact
+  std::vector<Vec3> body_momentum_, body_angular_;    // ... summed per body (apply_all)
   std::vector<Vec3> velocity_;               // relative velocity per island contact
 };
 

@@ -96,7 +96,7 @@ TEST_F(GranImpulseRigid, RodFallingFlatGetsTheImpulseOfOneBodyNotFive)
   const double M = 2.5e-5, I = 4e-11;    // rod-like mass and transverse inertia
   rod(0.005, 0.0005, 0.0);
   // The five contacts are one compliant impact: symmetric, and as one contact under the centre
-  // (within the impact's resolution, about 3/300 on the impulse).
+  // (within the impact's resolution, about 3/150 on the impulse at worst).
   command(fmt::format("fix body rod test/rigid {} 1e-12 {} {} 0 0 -0.1 0 0 0", M, I, I));
   command("fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.03\nrun 1");
   const double dt = 1e-5;
