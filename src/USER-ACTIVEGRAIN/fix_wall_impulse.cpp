@@ -35,6 +35,9 @@ static constexpr double MAX_STEP_TRAVEL = 0.01;
 // Roughness is a small tilt of the contact normal (the slope is evaluated under the sphere's
 // centre, not at its true foot point): keep it small.
 static constexpr double MAX_ROUGH_SLOPE = 0.3;
+// A contact approaching faster than this fraction of the plates' peak speed A 2 pi f is an impact
+// (output IMPACTS).
+static constexpr double IMPACT_FRACTION = 0.01;
 
 /* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
        [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
@@ -155,7 +158,11 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   const double zb = base_z(t), vb = base_vz(t);
   const double zlid = lid == Lid::MOVING ? zb + gap : z0 + gap;
   const double vlid = lid == Lid::MOVING ? vb : 0.0;
-  clear_delivered();
+  // Impacts for the lock-in tally: contacts approaching faster than a small fraction of the
+  // plate's peak speed (resting contacts approach at about g dt), at the drive's phase.
+  const double peak_speed = MY_2PI * frequency * amplitude;
+  clear_delivered(std::fmod(MY_2PI * frequency * t + phase, MY_2PI),
+                  peak_speed > 0.0 ? IMPACT_FRACTION * peak_speed : -1.0);
 
   double **x = atom->x;
   double *radius = atom->radius;

@@ -6,6 +6,8 @@
 #include "lammps.h"
 #include "utils.h"
 
+#include <cmath>
+
 using namespace LAMMPS_NS;
 
 int ImpulseWall::num_surface_outputs() const
@@ -13,6 +15,21 @@ int ImpulseWall::num_surface_outputs() const
   int n = 0;
   for (int q = 0; q < NUM_SURFACE_QUANTITIES; ++q) n += COMPONENTS[q] * static_cast<int>(delivered_.size());
   return n;
+}
+
+void ImpulseWall::clear_delivered(double drive_phase, double impact_speed)
+{
+  std::fill(delivered_.begin(), delivered_.end(), ActiveGrain::Vec3());
+  std::fill(impacts_.begin(), impacts_.end(), ActiveGrain::Vec3());
+  drive_phase_ = drive_phase;
+  impact_speed_ = impact_speed;
+}
+
+void ImpulseWall::add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J, double approach)
+{
+  delivered_[surface] += J;
+  if (impact_speed_ >= 0.0 && approach > impact_speed_)
+    impacts_[surface] += ActiveGrain::Vec3(1.0, std::cos(drive_phase_), std::sin(drive_phase_));
 }
 
 double ImpulseWall::surface_output(MPI_Comm world, int k) const
@@ -24,6 +41,7 @@ double ImpulseWall::surface_output(MPI_Comm world, int k) const
   double mine = 0.0, all = 0.0;
   switch (static_cast<SurfaceQuantity>(quantity)) {
     case IMPULSE: mine = (&delivered_[surface].x)[component]; break;
+    case IMPACTS: mine = (&impacts_[surface].x)[component]; break;
     case NUM_SURFACE_QUANTITIES: break;
   }
   MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);

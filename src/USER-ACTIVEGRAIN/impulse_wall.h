@@ -33,28 +33,38 @@ class ImpulseWall {
   // Called once per force computation.
   virtual void find_wall_contacts(double reach, const std::vector<char> &atoms,
                                   std::vector<Contact> &contacts) = 0;
-  // The impulse delivered to atoms through a surface in this force computation.
-  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J) { delivered_[surface] += J; }
+  // The impulse delivered to an atom through a surface in this force computation, at a contact
+  // that approached at speed approach (> 0) before the solve: an impact, if faster than the
+  // wall's impact threshold, is tallied at the wall's drive phase.
+  void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J, double approach);
 
   // Global outputs of the wall fixes (compute_vector), one layout for both: first the fix's own
   // state (fix wall/impulse: base z, lid z, plate velocity; fix wall/impulse/region: none), then
   // one block per SurfaceQuantity: for every surface in the fix's order (wall/impulse: base,
-  // lid), the quantity's components (impulse: x, y, z, in the last force computation). A
-  // quantity added later (energy input, dissipation) goes after the last one: the indices of
+  // lid), the quantity's components, all in the last force computation:
+  //   IMPULSE  x, y, z of the impulse delivered through the surface;
+  //   IMPACTS  impacts (contacts approaching faster than the impact threshold that got an
+  //            impulse), and the sums of cos and sin of the drive phase at them (the lock-in
+  //            order parameter R = |<exp(i phase)>| over any window is |sums| / impacts, each
+  //            summed over the window, e.g. with fix ave/time).
+  // A quantity added later (energy input, dissipation) goes after the last one: the indices of
   // the existing ones never change.
-  enum SurfaceQuantity { IMPULSE = 0, NUM_SURFACE_QUANTITIES };
-  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3};
+  enum SurfaceQuantity { IMPULSE = 0, IMPACTS, NUM_SURFACE_QUANTITIES };
+  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3, 3};
 
  protected:
-  explicit ImpulseWall(int nsurfaces) : delivered_(nsurfaces) {}
+  explicit ImpulseWall(int nsurfaces) : delivered_(nsurfaces), impacts_(nsurfaces) {}
   int num_surface_outputs() const;
-  // Start a force computation's tally.
-  void clear_delivered() { std::fill(delivered_.begin(), delivered_.end(), ActiveGrain::Vec3()); }
+  // Start a force computation's tally. A wall with a drive gives its phase (radians) and the
+  // approach speed above which a contact is an impact; without one, no impacts are tallied.
+  void clear_delivered(double drive_phase = 0.0, double impact_speed = -1.0);
   // Output k of the per-surface blocks (k counts from the first block), summed over ranks.
   double surface_output(MPI_Comm world, int k) const;
 
  private:
   std::vector<ActiveGrain::Vec3> delivered_;    // this rank's impulse per surface, last force computation
+  std::vector<ActiveGrain::Vec3> impacts_;      // ... impacts, sum cos, sum sin of the drive phase
+  double drive_phase_ = 0.0, impact_speed_ = -1.0;
 };
 
 // Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then

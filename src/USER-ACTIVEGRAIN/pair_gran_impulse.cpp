@@ -274,7 +274,9 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
       {static_cast<std::uint64_t>(update->ntimestep), static_cast<std::uint64_t>(wall_index + 1),
        static_cast<std::uint64_t>(atoms.surface), static_cast<std::uint64_t>(std::get<2>(identity)),
        static_cast<std::uint64_t>(std::get<3>(identity))});
-  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, atoms});
+  AtomContact located = atoms;
+  located.approach = std::max(0.0, -dot(u, n));
+  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, located});
   largest_overlap = std::max(largest_overlap, -gap);
 }
 
@@ -334,7 +336,7 @@ void PairGranImpulse::gather_pair_contacts()
       const int bi = body_of_atom(i), bj = body_of_atom(j);
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
       const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
-      add_contact(bi, bj, {i, j, nullptr, 0, point}, n, gap, material, lever_arm(i, bi, point),
+      add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0}, n, gap, material, lever_arm(i, bi, point),
                   lever_arm(j, bj, point));
     }
   }
@@ -350,7 +352,7 @@ void PairGranImpulse::gather_wall_contacts()
       if (!may_close(c.atom, -1, c.wall_velocity, c.gap)) continue;
       const int b = body_of_atom(c.atom);
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
-      add_contact(w, b, {-1, c.atom, wall, c.surface, c.point}, c.normal, c.gap, c.material, Vec3(),
+      add_contact(w, b, {-1, c.atom, wall, c.surface, c.point, 0.0}, c.normal, c.gap, c.material, Vec3(),
                   lever_arm(c.atom, b, c.point));
     }
   }
@@ -371,7 +373,7 @@ void PairGranImpulse::distribute_impulses()
     const Vec3 F = J * to_force;
     push(ac.atom2, F, ac.point);
     if (ac.atom1 >= 0) push(ac.atom1, -F, ac.point);
-    else ac.wall->add_delivered_impulse(ac.surface, J);
+    else ac.wall->add_delivered_impulse(ac.surface, J, ac.approach);
   }
 }
 

@@ -68,6 +68,7 @@ class PairGranImpulse : public Pair {
     ImpulseWall *wall;         // the wall fix for wall contacts
     int surface;
     ActiveGrain::Vec3 point;
+    double approach;           // normal approach speed before the solve (>= 0)
   };
   // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
   using ContactIdentity = std::tuple<int, int, tagint, tagint>;

@@ -51,3 +51,24 @@ TEST_F(BeadMonolayer, SolverHealthIsReportedThroughComputePair)
   EXPECT_EQ(value("c_health[2]"), solver_output(PairGranImpulse::SUBSTEPS));
   EXPECT_EQ(value("c_health[4]"), solver_output(PairGranImpulse::LARGEST_OVERLAP));
 }
+
+TEST_F(BeadMonolayer, ImpactPhaseTallyShowsLockIn)
+{
+  // Identical beads on flat plates fall into step with the drive (issue: the absorbing state):
+  // after 0.1 s every bead hits the base once per period, always at the same drive phase, so
+  // R = |<exp(i phase)>| over the impacts is 1 to 1e-4. The tally is the wall fix's IMPACTS
+  // block (base: count, sum cos, sum sin), summed here over 0.05 s with fix ave/time.
+  load_deck();
+  const int base = 3 + 3 * 2 + 1;    // state (3), impulse of base and lid (3 each); from 1
+  command("run 10000 post no\n"
+          "fix lockin all ave/time 1 5000 5000 f_plates[" + std::to_string(base) + "] f_plates[" +
+          std::to_string(base + 1) + "] f_plates[" + std::to_string(base + 2) + "]\n"
+          "variable impacts equal f_lockin[1]*5000\n"
+          "variable R equal sqrt(f_lockin[2]^2+f_lockin[3]^2)/f_lockin[1]\n"
+          "run 5000 post no");
+  EXPECT_EQ(value("v_impacts"), 360.0 * 10);    // 360 beads, 10 periods
+  EXPECT_GT(value("v_R"), 1.0 - 1e-4);
+  // Without a drive there is no phase: nothing is tallied.
+  command("unfix plates\nfix plates all wall/impulse zlo 0.0 gap 1.12e-3 e 0.3 mu 0.01\nrun 5000 post no");
+  EXPECT_EQ(value("f_lockin[1]"), 0.0);
+}
