@@ -60,7 +60,7 @@ class ContactSolver {
     int substeps = 0;         // most sub-steps an island's impact needed (0: none coupled)
     double shortfall = 0.0;   // largest separation velocity still missing at an overlap,
                               // relative to its minimum separation velocity
-    bool converged = true;    // every impact ended and every overlap opens (within tolerance)
+    bool converged = true;    // every impact ended within max_substeps
   };
 
   void clear();

@@ -432,8 +432,7 @@ void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &res
   if (capped_steps == next_cap_warning) {
     if (comm->me == 0)
       error->warning(FLERR, "{}: in {} steps of this run a compliant impact did not end within {} "
-                     "sub-steps or an overlap did not open (shortfall {:.3g})", STYLE, capped_steps,
-                     solver_settings.max_substeps, all[R_SHORTFALL]);
+                     "sub-steps", STYLE, capped_steps, solver_settings.max_substeps);
     next_cap_warning *= 10;
   }
 }

@@ -53,7 +53,6 @@ class PairGranImpulse : public Pair {
                         // step, relative to its minimum separation velocity
     LARGEST_OVERLAP,    // largest overlap of a contact since the run's setup (length)
     CAPPED_STEPS,       // steps since the run's setup in which an impact hit the sub-step cap
-                        // or an overlap did not open
     NUM_OUTPUTS
   };
   // Order in which contacts are visited: a hash of the step and the contact's identity (default),

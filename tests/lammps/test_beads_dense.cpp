@@ -45,7 +45,7 @@ TEST_F(BeadMonolayer, SolverHealthIsReportedThroughComputePair)
   using LAMMPS_NS::PairGranImpulse;
   EXPECT_GT(value("c_health[1]"), 0.0);     // contacts in the last step
   EXPECT_GE(value("c_health[2]"), 0.0);     // sub-steps of the largest impact of the last step
-  EXPECT_LE(value("c_health[3]"), 1e-6);    // overlap shortfall: none left
+  EXPECT_LE(value("c_health[3]"), 1e-2);    // overlap shortfall: within the pushes' tolerance
   EXPECT_GT(value("c_health[4]"), 0.0);     // largest overlap
   EXPECT_EQ(value("c_health[5]"), 0.0);     // no step hit the cap
   EXPECT_EQ(value("c_health[2]"), solver_output(PairGranImpulse::SUBSTEPS));
