@@ -34,6 +34,21 @@ inline std::string measure(int nrods, double seconds = MEASURE)
   return cmd;
 }
 
+// The styles of in.single-rod (paper rods and plates), for atoms read back from a data or
+// restart file; the rod template is written to mol_file.
+inline std::string single_rod_styles(const std::string &mol_file)
+{
+  return "comm_modify vel yes cutoff 6e-3\n"
+         "rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 types 1 2 3 "
+         "file " + mol_file + "\n"
+         "neigh_modify exclude molecule/intra all\n"
+         "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
+         "fix rods all rigid/rod molecule mol rod\n"
+         "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03\n"
+         "fix gravity all gravity 9.81 vector 0 0 -1\n"
+         "compute tsphere all temp/sphere\nthermo_modify temp tsphere\n";
+}
+
 // Commands: every index variable of the deck set by `vars`, then the deck, then per-rod speed
 // along the axis averaged every 10 steps over `seconds`.
 inline std::string deck(const std::map<std::string, std::string> &vars, int nrods, double seconds = MEASURE)

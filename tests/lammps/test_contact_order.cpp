@@ -99,16 +99,9 @@ TEST_F(ContactOrderTest, RenumberingARodNoseFirstDoesNotChangeItsSpeed)
   auto walk_from = [&](const std::string &file) {
     fresh_lammps();
     command("units si\natom_style sphere\natom_modify map array\ndimension 3\nboundary p p f\n"
-            "comm_modify vel yes cutoff 6e-3\nfix molecule_ids all property/atom mol ghost yes\n"
-            "read_data " + file + " fix molecule_ids NULL Molecules\n"
-            "rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 types 1 2 3 "
-            "file out/rod_test_contact_order_read.mol\n"
-            "neigh_modify exclude molecule/intra all\n"
-            "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-            "fix rods all rigid/rod molecule mol rod\n"
-            "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03\n"
-            "fix gravity all gravity 9.81 vector 0 0 -1\n"
-            "compute tsphere all temp/sphere\nthermo_modify temp tsphere\n"
+            "fix molecule_ids all property/atom mol ghost yes\n"
+            "read_data " + file + " fix molecule_ids NULL Molecules\n" +
+            single_rod_styles("out/rod_test_contact_order_read.mol") +
             "thermo 0\ntimestep " + std::string(DT) + "\n"
             "run " + std::to_string(static_cast<int>(SETTLE / std::stod(DT))) + "\n" + measure(NRODS));
     return mean(speeds(lmp, NRODS));

@@ -107,17 +107,8 @@ TEST_F(RodWalkingTest, RestartContinuesTheWalkExactly)
   // The styles again after read_restart (templates and rigid fixes are not in restart files).
   fresh_lammps();
   command("atom_modify map array\nread_restart " + restart + "\n"
-          "fix molecule_ids all property/atom mol ghost yes\n"
-          "comm_modify vel yes cutoff 6e-3\n"
-          "rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 types 1 2 3 "
-          "file out/rod_test_restart2.mol\n"
-          "neigh_modify exclude molecule/intra all\n"
-          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
-          "fix rods all rigid/rod molecule mol rod\n"
-          "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03\n"
-          "fix gravity all gravity 9.81 vector 0 0 -1\n"
-          "compute tsphere all temp/sphere\nthermo_modify temp tsphere\n"
-          "timestep 5e-5\nrun 1000 post no");
+          "fix molecule_ids all property/atom mol ghost yes\n" +
+          single_rod_styles("out/rod_test_restart2.mol") + "timestep 5e-5\nrun 1000 post no");
   EXPECT_NEAR(value("xcm(all,x)"), x, 1e-12);
   EXPECT_NEAR(value("xcm(all,y)"), y, 1e-12);
   EXPECT_NEAR(value("vcm(all,x)"), vx, 1e-12);
