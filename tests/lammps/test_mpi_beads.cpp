@@ -72,8 +72,6 @@ TEST_F(BeadMonolayer, RunBoundariesAndRestartsContinueTheRun)
   // A run split in two, or interrupted by write_restart/read_restart, continues like the
   // uninterrupted one: the half of the last contact impulse still due is stored with the atoms.
   // The split is put on a step with contacts.
-  int me = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
   command("atom_modify map array");
   load_deck();
   command("run 2000 post no");
@@ -119,7 +117,6 @@ TEST_F(BeadMonolayer, RunBoundariesAndRestartsContinueTheRun)
           "thermo_style custom step c_ke\n"
           "run 600 post no");
   expect_same(probe(), continuous, 1e-9, fmt::format("restarted at step {}", split));
-  if (me == 0) remove("beads-restart-test.bin");
 }
 
 TEST_F(BeadMonolayer, NewtonOffAndOnGiveTheSameCollisionAcrossRanksAndPeriodicBoundaries)

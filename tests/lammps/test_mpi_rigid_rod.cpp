@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 using namespace rod_deck;
@@ -30,16 +29,6 @@ const Vec3 OMEGA0(30.0, -20.0, 50.0);     // rad/s
 class RigidRodTest : public LammpsTest {
  protected:
   const std::string file = "test_mpi_rigid_rod.mol";
-  void TearDown() override
-  {
-    LammpsTest::TearDown();
-    int me = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &me);
-    if (me == 0) {
-      std::remove(file.c_str());
-      std::remove("test_mpi_rigid_rod.restart");
-    }
-  }
 
   // One rod across the periodic x boundary (and the sub-domain boundaries in x, y and z),
   // moving with V0 and spinning with OMEGA0 about its COM, no gravity, no contacts.

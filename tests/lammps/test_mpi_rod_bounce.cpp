@@ -93,13 +93,6 @@ class RodBounceTest : public LammpsTest {
  protected:
   const std::string file = "test_mpi_rod_bounce.mol";
   void compare_with_one_rank(const Bounce &setup);
-  void TearDown() override
-  {
-    LammpsTest::TearDown();
-    int me = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &me);
-    if (me == 0) std::remove(file.c_str());
-  }
 };
 
 TEST_F(RodBounceTest, FlatRodAcrossSubdomainsBouncesAsOnOneRank)

@@ -9,7 +9,6 @@
 #include "molecule.h"
 
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 
 using namespace rod_deck;
@@ -24,11 +23,6 @@ ActiveGrain::RodGeometry analytic(double tail = TAIL, double nose = NOSE)
 class RodTemplateTest : public LammpsTest {
  protected:
   const std::string file = "test_rod_template.mol";
-  void TearDown() override
-  {
-    LammpsTest::TearDown();
-    std::remove(file.c_str());
-  }
   LAMMPS_NS::Molecule *molecule()
   {
     int imol = lmp->atom->find_molecule("rod");

@@ -112,5 +112,4 @@ TEST_F(RodWalkingTest, RestartContinuesTheWalkExactly)
   EXPECT_NEAR(value("xcm(all,x)"), x, 1e-12);
   EXPECT_NEAR(value("xcm(all,y)"), y, 1e-12);
   EXPECT_NEAR(value("vcm(all,x)"), vx, 1e-12);
-  std::remove(restart.c_str());
 }
