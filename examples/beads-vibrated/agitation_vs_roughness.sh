@@ -24,6 +24,6 @@ DECK
 printf 'phi %s; rms horizontal bead speed / (A omega) at t = 0, 0.1, ..., 1 s\n' "$phi"
 for rough in 0 0.01 0.02 0.05; do
   printf 'rough %-5s' "$rough"
-  "$lmp" -in "$deck" -var rough "$rough" -var phi "$phi" -log none -echo none 2>/dev/null |
+  "$lmp" -in "$deck" -var rough "$rough" -var rough_length 1e-3 -var phi "$phi" -log none -echo none 2>/dev/null |
     awk '/^ +Step/ {on=1; next} /^Loop time/ {on=0} on && NF==3 {printf " %.3g", $3} END {print ""}'
 done

@@ -3,7 +3,7 @@
 # contacts (dt 1e-5 s, restitution within 2 %: see restitution_vs_dt.sh) against stock LAMMPS
 # GRANULAR (pair_style granular Hertz/Mindlin + fix wall/gran ... wiggle, aluminium's modulus,
 # dt 2e-7 s, ~25 steps per Hertz contact). Prints atom-steps/s and simulated seconds per
-# wall-clock hour of each.
+# wall-clock hour of each. Both on flat plates (stock fix wall/gran has no roughness).
 #   examples/beads-vibrated/bench.sh [path/to/lmp] [nx ny]   (default: build/lmp, 36 20 = 1440 beads)
 #   NP=2 examples/beads-vibrated/bench.sh                    (under mpirun -np 2)
 set -euo pipefail
@@ -16,7 +16,7 @@ launcher=()
 [ "$np" -gt 1 ] && launcher=(mpirun -np "$np")
 
 run() {    # model dt steps
-  "${launcher[@]}" "$lmp" -in "$here/in.beads-vibrated" -var model "$1" -var dt "$2" -var steps "$3" \
+  "${launcher[@]}" "$lmp" -in "$here/in.beads-vibrated" -var model "$1" -var dt "$2" -var steps "$3" -var rough 0 \
       -var nx "$nx" -var ny "$ny" -log none -echo none |
     awk -v model="$1" -v dt="$2" -v steps="$3" '
       /^Loop time of/ {t=$4; n=$(NF-1)}

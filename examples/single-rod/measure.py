@@ -1,4 +1,5 @@
-"""Single-rod speed tables: time step, plate friction and restitution, drive, spheres.
+"""Single-rod speed tables on flat plates (the deterministic model): time step, plate friction and
+restitution, drive, spheres.
 
 Runs in.single-rod (4 rods far apart per run, several seeds) and prints mean and spread of the
 speed along the rods' own axes. Long: minutes. Usage, from this folder:
@@ -15,7 +16,12 @@ import rodtrack
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-def run(lmp, tag, dt=1e-5, time=2.0, np_ranks=1, mpirun="mpirun", **vars_):
+def default_lmp():
+    return os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp"))
+
+
+def run_deck(lmp, tag, dt=1e-5, time=2.0, np_ranks=1, mpirun="mpirun", **vars_):
+    """Run in.single-rod; the rods' dump is out/rods_<tag>.local."""
     os.makedirs(os.path.join(HERE, "out"), exist_ok=True)
     cmd = [lmp, "-in", "in.single-rod", "-log", "none", "-screen", "none", "-var", "tag", tag,
            "-var", "dt", repr(dt), "-var", "time", repr(time)]
@@ -24,11 +30,19 @@ def run(lmp, tag, dt=1e-5, time=2.0, np_ranks=1, mpirun="mpirun", **vars_):
     if np_ranks > 1:
         cmd = [mpirun, "--oversubscribe", "-np", str(np_ranks)] + cmd
     subprocess.run(cmd, cwd=HERE, check=True)
+
+
+def run(lmp, tag, dt=1e-5, **kw):
+    """Speeds along the own axis of the rods of one run of in.single-rod."""
+    run_deck(lmp, tag, dt=dt, **kw)
     res = rodtrack.summarize(os.path.join(HERE, "out", f"rods_{tag}.local"), dt)
     return [v[0] for v in res.values()]
 
 
 def speeds(lmp, label, seeds, **kw):
+    """Mean, s.d. and number of the rods' speeds over seeds; flat plates unless kw set rough (the
+    tables are the deterministic model's; calibrate.py measures on rough plates)."""
+    kw.setdefault("rough", 0)
     s = []
     for seed in range(1, seeds + 1):
         s += run(lmp, f"{label}_s{seed}", seed=seed, **kw)
@@ -46,7 +60,7 @@ def table(title, column, rows):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("what", nargs="?", default="all")  # ranks needs mpirun (as root: OMPI_ALLOW_RUN_AS_ROOT*)
-    ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
+    ap.add_argument("--lmp", default=default_lmp())
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--time", type=float, default=2.0)
     a = ap.parse_args()

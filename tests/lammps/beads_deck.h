@@ -13,10 +13,11 @@
 
 class BeadMonolayer : public LammpsTest {
  protected:
-  // The deck with its defaults (360 beads, area fraction 0.75), set up but not run.
+  // The deck with its defaults (360 beads, area fraction 0.75), set up but not run; flat plates
+  // unless extra_variables set the roughness (the deck's default is calibrated roughness).
   void load_deck(const std::string &extra_variables = "")
   {
-    command("variable steps index 0\n" + extra_variables);
+    command("variable steps index 0\n" + extra_variables + "\nvariable rough index 0");
     command("include " ACTIVEGRAIN_SOURCE_DIR "/examples/beads-vibrated/in.beads-vibrated");
   }
 

@@ -6,6 +6,7 @@
 #include "lammps.h"
 #include "library.h"
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,9 +35,12 @@ inline std::string measure(int nrods, double seconds = MEASURE)
   return cmd;
 }
 
-// The styles of in.single-rod (paper rods and plates), for atoms read back from a data or
-// restart file; the rod template is written to mol_file.
-inline std::string single_rod_styles(const std::string &mol_file)
+// in.single-rod's default plate roughness: rms slope, correlation length, seed.
+constexpr const char *DECK_ROUGHNESS = "0.06 5e-6 12345";
+
+// The styles of in.single-rod (paper rods and plates, with the given roughness), for atoms read
+// back from a data or restart file; the rod template is written to mol_file.
+inline std::string single_rod_styles(const std::string &mol_file, const std::string &roughness)
 {
   return "comm_modify vel yes cutoff 6e-3\n"
          "rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 types 1 2 3 "
@@ -44,9 +48,18 @@ inline std::string single_rod_styles(const std::string &mol_file)
          "neigh_modify exclude molecule/intra all\n"
          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\n"
          "fix rods all rigid/rod molecule mol rod\n"
-         "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03\n"
+         "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03 "
+         "rough " + roughness + "\n"
          "fix gravity all gravity 9.81 vector 0 0 -1\n"
          "compute tsphere all temp/sphere\nthermo_modify temp tsphere\n";
+}
+
+// The deck's variables for flat plates (the deterministic model; the deck's default is calibrated
+// roughness), unless `vars` set the roughness.
+inline std::map<std::string, std::string> flat_plates(std::map<std::string, std::string> vars)
+{
+  vars.emplace("rough", "0");
+  return vars;
 }
 
 // Commands: every index variable of the deck set by `vars`, then the deck, then per-rod speed
@@ -81,6 +94,15 @@ inline double mean(const std::vector<double> &v)
   double s = 0;
   for (double x : v) s += x;
   return s / v.size();
+}
+
+// Standard error of the mean of v.
+inline double standard_error(const std::vector<double> &v)
+{
+  const double m = mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / (v.size() - 1) / v.size());
 }
 
 }    // namespace rod_walking

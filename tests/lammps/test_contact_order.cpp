@@ -24,7 +24,7 @@ class ContactOrderTest : public LammpsTest {
   {
     vars.emplace("tag", "test_contact_order");
     vars.emplace("dt", DT);
-    command(deck(vars, NRODS));
+    command(deck(flat_plates(vars), NRODS));
     return mean(speeds(lmp, NRODS));
   }
   void fresh_lammps()
@@ -89,7 +89,7 @@ TEST_F(ContactOrderTest, RenumberingARodNoseFirstDoesNotChangeItsSpeed)
   int me = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &me);
   const std::string built = "test_contact_order_built.data", reversed = "test_contact_order_reversed.data";
-  command("variable tag index test_contact_order\nvariable dt index " + std::string(DT) +
+  command("variable tag index test_contact_order\nvariable rough index 0\nvariable dt index " + std::string(DT) +
           "\nvariable time index 0\n"
           "include " ACTIVEGRAIN_SOURCE_DIR "/examples/single-rod/in.single-rod\n"
           "undump bodies\nwrite_data " + built + " nocoeff");
@@ -101,7 +101,7 @@ TEST_F(ContactOrderTest, RenumberingARodNoseFirstDoesNotChangeItsSpeed)
     command("units si\natom_style sphere\natom_modify map array\ndimension 3\nboundary p p f\n"
             "fix molecule_ids all property/atom mol ghost yes\n"
             "read_data " + file + " fix molecule_ids NULL Molecules\n" +
-            single_rod_styles("out/rod_test_contact_order_read.mol") +
+            single_rod_styles("out/rod_test_contact_order_read.mol", "0 1e-3 1") +
             "thermo 0\ntimestep " + std::string(DT) + "\n"
             "run " + std::to_string(static_cast<int>(SETTLE / std::stod(DT))) + "\n" + measure(NRODS));
     return mean(speeds(lmp, NRODS));
