@@ -7,9 +7,11 @@
 #include "fix_wall_impulse_region.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "region.h"
 
 #include <cstring>
@@ -49,10 +51,25 @@ int FixWallImpulseRegion::setmask()
 
 void FixWallImpulseRegion::init()
 {
-  region = domain->get_region_by_id(region_id);
-  if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
+  Region *now = domain->get_region_by_id(region_id);
+  if (!now) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
   check_wall_host(lmp, STYLE);
+  region = now;
   region->init();
+
+  // The largest particle of the group, present or to be inserted, must fit inside the region
+  // (its bounding box, where the region has one and keeps its shape and orientation).
+  if (region->interior && region->bboxflag && !region->rotateflag && !region->varshape) {
+    const double diameter = 2.0 * largest_radius(lmp, groupbit);
+    const double extent[3] = {region->extent_xhi - region->extent_xlo, region->extent_yhi - region->extent_ylo,
+                              region->extent_zhi - region->extent_zlo};
+    const char axis[3] = {'x', 'y', 'z'};
+    for (int d = 0; d < domain->dimension; d++)
+      if (diameter > extent[d])
+        error->all(FLERR, "{}: region {} is narrower ({} extent {}) than the largest particle of "
+                   "group {} (diameter {})", STYLE, region_id, axis[d], extent[d],
+                   group->names[igroup], diameter);
+  }
 }
 
 void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<char> &atoms,
