@@ -296,3 +296,17 @@ TEST_F(GranImpulse, MovingRegionWallContinuesExactlyAcrossARestart)
   for (size_t k = 0; k < continuous.size(); ++k)
     EXPECT_NEAR(restarted[k], continuous[k], 1e-12 * (k % 4 < 2 ? 0.01 : 0.1)) << k;
 }
+
+TEST_F(GranImpulse, AtomsOfFixFreezeAreBodiesOfInfiniteMass)
+{
+  // A bead hits a frozen bead head-on: it rebounds with e as from a wall, and the frozen bead
+  // (touching another frozen one: a contact skipped) takes nothing. As GRANULAR treats fix freeze.
+  bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0);
+  bead(0.006, 0.005, 0.001, 0.0, 0.0, 0.0);
+  bead(0.007, 0.005, 0.001, 0.0, 0.0, 0.0);
+  command(kPair);
+  command("group frozen id 2 3\ngroup moving id 1\nfix nve moving nve/sphere\nfix hold frozen freeze\nrun 3000");
+  EXPECT_NEAR(v(1, 'x'), -0.3 * 0.1, 1e-12);
+  EXPECT_EQ(value("x[2]"), 0.006);
+  EXPECT_EQ(v(2, 'x'), 0.0);
+}
