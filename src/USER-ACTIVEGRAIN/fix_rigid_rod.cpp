@@ -115,6 +115,15 @@ void FixRigidRod::setup_pre_neighbor()
   if (reinit) impose_rod_bodies();
 }
 
+// A time step change: pair gran/impulse has rescaled the contact forces of the last step in
+// atom->f (the half impulse still due); the bodies' forces, summed from them in final_integrate,
+// must follow, or the next initial_integrate applies the old ones with the new dt.
+void FixRigidRod::reset_dt()
+{
+  FixRigidSmall::reset_dt();
+  if (setupflag) compute_forces_and_torques();
+}
+
 /* The base class built each body from its atoms: their masses already sum to the solid's mass
    and centre of mass (rod_template), but their inertia is that of point masses and spheres.
    Give every body the solid's inertia, keep its angular velocity, and rotate its body frame so

@@ -16,6 +16,7 @@ class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
   void init() override;
   void setup_pre_neighbor() override;
   void setup_pre_force(int) override;
+  void reset_dt() override;
   void pre_force(int) override;
   void grow_arrays(int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;

@@ -12,6 +12,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "math_const.h"
 #include "update.h"
 #include "utils.h"
@@ -122,6 +123,20 @@ void FixWallImpulse::init()
     surface[s] = ActiveGrain::RoughSurface(rough_slope, rough_length,
                                            ActiveGrain::hash_words({(std::uint64_t) rough_seed, (std::uint64_t) s}),
                                            period_x, period_y);
+  // The largest particle of the group, present or to be inserted, must fit between the plates.
+  if (lid != Lid::NONE) {
+    const double diameter = 2.0 * largest_radius(lmp, groupbit);
+    if (diameter > gap)
+      error->all(FLERR, "{}: gap {} is narrower than the largest particle of group {} (diameter {})",
+                 STYLE, gap, group->names[igroup], diameter);
+  }
+  check_time_step(true);
+}
+
+// The drive must be resolved in time: checked before each run (with a warning when the plates
+// move far in one step) and whenever the time step changes (timestep, fix dt/reset).
+void FixWallImpulse::check_time_step(bool warn)
+{
   const double dt = update->dt;
   if (amplitude > 0.0 && frequency > 0.0) {
     const double steps_per_period = 1.0 / (frequency * dt);
@@ -129,10 +144,15 @@ void FixWallImpulse::init()
       error->all(FLERR, "{}: time step {} too large for the vibration: {:.3g} steps per period (need >= {})",
                  STYLE, dt, steps_per_period, MIN_STEPS_PER_PERIOD);
     const double travel = MY_2PI * frequency * amplitude * dt;
-    if (lid != Lid::NONE && travel > MAX_STEP_TRAVEL * gap && comm->me == 0)
+    if (warn && lid != Lid::NONE && travel > MAX_STEP_TRAVEL * gap && comm->me == 0)
       error->warning(FLERR, "{}: plates move {:.3g} per step, more than {} of the gap", STYLE, travel,
                      MAX_STEP_TRAVEL);
   }
+}
+
+void FixWallImpulse::reset_dt()
+{
+  check_time_step(false);
 }
 
 // Simulation time of the current positions; continues exactly across restarts.

@@ -21,6 +21,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   FixWallImpulse(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
+  void reset_dt() override;
   double compute_scalar() override;
   double compute_vector(int) override;
 
@@ -33,6 +34,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   enum State { BASE_Z = 0, LID_Z, PLATE_VZ, NUM_STATE };
   enum class Lid { NONE, MOVING, FIXED };
 
+  void check_time_step(bool warn);
   double time_now() const;
   double base_z(double t) const;
   double base_vz(double t) const;

@@ -7,9 +7,11 @@
 #include "fix_wall_impulse_region.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "region.h"
 
 #include <cstring>
@@ -22,7 +24,7 @@ static const char *const STYLE = "Fix wall/impulse/region";
 
 /* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
 FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), ImpulseWall(1), region(nullptr), materials(lmp, STYLE)
+    Fix(lmp, narg, arg), ImpulseWall(1), region(nullptr), materials(lmp, STYLE), motion_reset(false)
 {
   if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
   region_id = arg[3];
@@ -36,6 +38,9 @@ FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
   }
   materials.check_complete();
 
+  // A moving region's wall velocity is its displacement since the last step: the restart file
+  // keeps the last position (as fix wall/gran/region does).
+  restart_global = 1;
   vector_flag = 1;
   size_vector = num_surface_outputs();
   global_freq = 1;
@@ -49,10 +54,34 @@ int FixWallImpulseRegion::setmask()
 
 void FixWallImpulseRegion::init()
 {
-  region = domain->get_region_by_id(region_id);
-  if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
+  Region *now = domain->get_region_by_id(region_id);
+  if (!now) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
   check_wall_host(lmp, STYLE);
+  // A region defined anew, or one the restart file's does not fit: its motion starts afresh.
+  if (now != region || motion_reset) {
+    if (comm->me == 0)
+      error->warning(FLERR, "{}: region {} {}, its motion starts afresh (wall velocity 0 in the "
+                     "first step)", STYLE, region_id, now != region ? "changed between runs" :
+                     "does not match the restart file");
+    now->reset_vel();
+    motion_reset = false;
+  }
+  region = now;
   region->init();
+
+  // The largest particle of the group, present or to be inserted, must fit inside the region
+  // (its bounding box, where the region has one and keeps its shape and orientation).
+  if (region->interior && region->bboxflag && !region->rotateflag && !region->varshape) {
+    const double diameter = 2.0 * largest_radius(lmp, groupbit);
+    const double extent[3] = {region->extent_xhi - region->extent_xlo, region->extent_yhi - region->extent_ylo,
+                              region->extent_zhi - region->extent_zlo};
+    const char axis[3] = {'x', 'y', 'z'};
+    for (int d = 0; d < domain->dimension; d++)
+      if (diameter > extent[d])
+        error->all(FLERR, "{}: region {} is narrower ({} extent {}) than the largest particle of "
+                   "group {} (diameter {})", STYLE, region_id, axis[d], extent[d],
+                   group->names[igroup], diameter);
+  }
 }
 
 void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<char> &atoms,
@@ -87,6 +116,21 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
                           materials.of_type(type[i])});
     }
   }
+}
+
+void FixWallImpulseRegion::write_restart(FILE *fp)
+{
+  if (comm->me) return;
+  int size = 0;
+  region->length_restart_string(size);
+  fwrite(&size, sizeof(int), 1, fp);
+  region->write_restart(fp);
+}
+
+void FixWallImpulseRegion::restart(char *buf)
+{
+  int n = 0;
+  if (!region->restart(buf, n)) motion_reset = true;
 }
 
 // Impulse on atoms from the region's surface in the last force computation (x, y, z): the

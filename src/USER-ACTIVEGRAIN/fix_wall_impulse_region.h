@@ -23,6 +23,8 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
   int setmask() override;
   void init() override;
   double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
                           std::vector<Contact> &contacts) override;
@@ -31,6 +33,7 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
   std::string region_id;
   class Region *region;
   WallMaterials materials;
+  bool motion_reset;    // the restart file's region motion does not fit this region
 };
 
 }    // namespace LAMMPS_NS

@@ -24,6 +24,7 @@
 #include "neighbor.h"
 #include "rigid_body_provider.h"
 #include "update.h"
+#include "utils.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +37,7 @@ using ActiveGrain::RigidBodyState;
 using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Pair gran/impulse";
-static const char *const PENDING_ID = "AG_GRAN_IMPULSE_PENDING";
+static const char *const PENDING_ID = "AG_GRAN_IMPULSE_DUE";
 static constexpr double DEFAULT_BETA = 0.2;
 // Below this many sub-steps per half oscillation a compliant impact is too coarse to keep its
 // restitution (docs/pair_gran_impulse.rst: the error is about 3/resolution).
@@ -45,8 +46,9 @@ static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
-    maxrad(nullptr), pending(nullptr),
-    ghost_pairs(false), ranks(lmp), nmax(0), fcontact(nullptr), tcontact(nullptr), largest_overlap(0.0),
+    maxrad(nullptr), freeze_groupbit(0), pending(nullptr), force_dt(0.0),
+    ghost_pairs(false), ranks(lmp), nmax(0), fcontact(nullptr), tcontact(nullptr), fastest(0.0),
+    radius_excess(0.0), skin_warned(false), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
@@ -151,6 +153,7 @@ void PairGranImpulse::init_style()
   if (!atom->tag_enable) error->all(FLERR, "{} requires atom IDs", STYLE);
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "{} requires ghost atoms to store velocity: use comm_modify vel yes", STYLE);
+  refuse_unsupported();
 
   pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
@@ -177,15 +180,67 @@ void PairGranImpulse::init_style()
     neighbor->add_request(this, NeighConst::REQ_SIZE);
   }
 
-  // Largest radius of each type present now: neighbor cutoffs are radius sums plus the skin.
+  // Largest radius of each type, present now or to be inserted by fix pour/deposit during the
+  // run (as GRANULAR's pair styles do): neighbor cutoffs are radius sums plus the skin. An atom
+  // larger than its type's radius here (inserted by other means) is refused in the run.
   const int ntypes = atom->ntypes;
   std::vector<double> local(ntypes + 1, 0.0);
   for (int i = 0; i < atom->nlocal; i++)
     local[atom->type[i]] = std::max(local[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(local.data(), maxrad, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int t = 1; t <= ntypes; t++) maxrad[t] = std::max(maxrad[t], inserted_radius(lmp, t));
   const double largest = *std::max_element(maxrad + 1, maxrad + ntypes + 1);
   for (int t = 1; t <= ntypes; t++)
     if (maxrad[t] == 0.0) maxrad[t] = largest;
+
+  // A particle wider than the box would touch its own periodic image or not fit between the
+  // box's walls.
+  const char axis[3] = {'x', 'y', 'z'};
+  for (int d = 0; d < domain->dimension; d++)
+    if (2.0 * largest > domain->prd[d])
+      error->all(FLERR, "{}: particles of diameter {} are wider than the box ({} length {})", STYLE,
+                 2.0 * largest, axis[d], domain->prd[d]);
+
+  auto freezes = modify->get_fix_by_style("^freeze");
+  if (freezes.size() > 1) error->all(FLERR, "{}: only one fix freeze is supported", STYLE);
+  freeze_groupbit = freezes.empty() ? 0 : freezes.front()->groupbit;
+}
+
+// What this style cannot do, refused before a run: other integrators than velocity Verlet, and
+// rigid bodies it does not know (it would solve their atoms as free spheres).
+void PairGranImpulse::refuse_unsupported()
+{
+  // Contacts are impulses of one time step applied by velocity Verlet, not forces of a potential.
+  if (update->whichflag == 2)
+    error->all(FLERR, "{}: minimize is not supported (contacts are impulses of a time step, with "
+               "no energy to minimize)", STYLE);
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "{}: run_style respa is not supported (impulses must act within the outer "
+               "time step): use run_style verlet", STYLE);
+  for (Fix *fix : modify->get_fix_list())
+    if (fix->rigid_flag && !dynamic_cast<RigidBodyProvider *>(fix))
+      error->all(FLERR, "{}: fix {} (style {}) makes rigid bodies whose atoms this pair style would "
+                 "solve as free spheres: use fix rigid/rod (a body's mass, centre of mass and "
+                 "inertia enter the contact)", STYLE, fix->id, fix->style);
+}
+
+// A time step change (the timestep command between runs, fix dt/reset in a run) while the second
+// half of the last step's impulses is still due: atom->f holds it as J/dt_old, which the next
+// initial_integrate would apply with the new dt. Rescale it to J/dt_new, so that each impulse
+// still acts in full. (Fix rigid/rod then sums the corrected forces into its bodies.)
+void PairGranImpulse::reset_dt()
+{
+  if (!pending || force_dt <= 0.0 || force_dt == update->dt) return;
+  const double change = 1.0 / update->dt - 1.0 / force_dt;
+  double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
+  const double step = (double) update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (saved[i][PENDING_STEP] == step)
+      for (int k = 0; k < 3; k++) {
+        f[i][k] += saved[i][PENDING_IMPULSE + k] * change;
+        torque[i][k] += saved[i][PENDING_ANGULAR + k] * change;
+      }
+  force_dt = update->dt;
 }
 
 double PairGranImpulse::init_one(int i, int j)
@@ -217,6 +272,11 @@ void PairGranImpulse::grow_buffers()
   atom_body.assign(nall, -1);
   spin_speed.resize(nall);
   for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
+  fastest = radius_excess = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    fastest = std::max(fastest, norm(Vec3(atom->v[i])) + spin_speed[i]);
+    radius_excess = std::max(radius_excess, atom->radius[i] - maxrad[atom->type[i]]);
+  }
 }
 
 // The solver body of atom i: its rigid body if a provider claims it (all atoms of one body
@@ -234,9 +294,15 @@ int PairGranImpulse::body_of_atom(int i)
     }
   if (key < 0) {
     key = 2 * atom->tag[i];
-    state = RigidBodyState::sphere(atom->rmass[i], atom->radius[i], Vec3(atom->x[i]),
-                                   Vec3(atom->v[i]), Vec3(atom->omega[i]));
-    if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
+    if (atom->mask[i] & freeze_groupbit) {
+      // Held in place by fix freeze: moves no more than a wall does.
+      state = RigidBodyState::wall(Vec3(atom->v[i]));
+      state.com = Vec3(atom->x[i]);
+    } else {
+      state = RigidBodyState::sphere(atom->rmass[i], atom->radius[i], Vec3(atom->x[i]),
+                                     Vec3(atom->v[i]), Vec3(atom->omega[i]));
+      if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
+    }
   }
   auto found = body_index.find(key);
   const int body = found != body_index.end() ? found->second : solver.add_body(state);
@@ -335,6 +401,7 @@ void PairGranImpulse::gather_pair_contacts()
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
+      if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
       const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
       add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0}, n, gap, material, lever_arm(i, bi, point),
                   lever_arm(j, bj, point));
@@ -351,6 +418,7 @@ void PairGranImpulse::gather_wall_contacts()
     for (const ImpulseWall::Contact &c : wall_scratch) {
       if (!may_close(c.atom, -1, c.wall_velocity, c.gap)) continue;
       const int b = body_of_atom(c.atom);
+      if (solver.body(b).is_static()) continue;    // a frozen atom
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
       add_contact(w, b, {-1, c.atom, wall, c.surface, c.point, 0.0}, c.normal, c.gap, c.material, Vec3(),
                   lever_arm(c.atom, b, c.point));
@@ -381,7 +449,7 @@ void PairGranImpulse::distribute_impulses()
 void PairGranImpulse::apply_contact_forces(bool store)
 {
   double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
-  const double step = (double) update->ntimestep;
+  const double step = (double) update->ntimestep, dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {
     for (int k = 0; k < 3; k++) {
       f[i][k] += fcontact[i][k];
@@ -389,11 +457,12 @@ void PairGranImpulse::apply_contact_forces(bool store)
     }
     if (!store) continue;
     for (int k = 0; k < 3; k++) {
-      saved[i][PENDING_FORCE + k] = fcontact[i][k];
-      saved[i][PENDING_TORQUE + k] = tcontact[i][k];
+      saved[i][PENDING_IMPULSE + k] = fcontact[i][k] * dt;
+      saved[i][PENDING_ANGULAR + k] = tcontact[i][k] * dt;
     }
     saved[i][PENDING_STEP] = step;
   }
+  force_dt = dt;
 }
 
 // The contact forces of the step this run continues from (if any): their half due in its
@@ -401,25 +470,40 @@ void PairGranImpulse::apply_contact_forces(bool store)
 void PairGranImpulse::restore_pending_forces()
 {
   double **saved = pending->astore;
-  const double step = (double) update->ntimestep;
+  const double step = (double) update->ntimestep, dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++)
     if (saved[i][PENDING_STEP] == step)
       for (int k = 0; k < 3; k++) {
-        fcontact[i][k] = saved[i][PENDING_FORCE + k];
-        tcontact[i][k] = saved[i][PENDING_TORQUE + k];
+        fcontact[i][k] = saved[i][PENDING_IMPULSE + k] / dt;
+        tcontact[i][k] = saved[i][PENDING_ANGULAR + k] / dt;
       }
 }
 
 // Solver health into pvector (see Output), and a warning when impacts keep hitting the cap.
 void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &result)
 {
-  enum Reduced { R_SUBSTEPS, R_SHORTFALL, R_OVERLAP, R_CAPPED, NUM_REDUCED };
+  enum Reduced { R_SUBSTEPS, R_SHORTFALL, R_OVERLAP, R_CAPPED, R_FASTEST, R_RADIUS, NUM_REDUCED };
   double mine[NUM_REDUCED] = {(double) result.substeps, result.shortfall, largest_overlap,
-                              result.converged ? 0.0 : 1.0};
+                              result.converged ? 0.0 : 1.0, fastest, radius_excess};
   double all[NUM_REDUCED];
   if (comm->nprocs > 1) MPI_Allreduce(mine, all, NUM_REDUCED, MPI_DOUBLE, MPI_MAX, world);
   else std::copy(mine, mine + NUM_REDUCED, all);
   if (all[R_CAPPED] > 0.0) capped_steps++;
+  if (all[R_RADIUS] > 1e-12 * (*std::max_element(maxrad + 1, maxrad + atom->ntypes + 1)))
+    error->all(FLERR, "{}: an atom is larger by {:.3g} than the largest radius of its type known at "
+               "the run's setup (atoms then present, fix pour and fix deposit), from which the "
+               "neighbor cutoff is made: its contacts would be missed. Insert atoms with fix pour or "
+               "fix deposit, or between runs", STYLE, all[R_RADIUS]);
+  // LAMMPS rebuilds neighbor lists after an atom moved half the skin: a pair that closes more
+  // than the other half in one step can be missing from the list when it is about to touch.
+  const double closing = 2.0 * all[R_FASTEST] * update->dt;
+  if (!skin_warned && closing > 0.5 * neighbor->skin) {
+    if (comm->me == 0)
+      error->warning(FLERR, "{}: two particles can close {:.3g} in one step (2 x largest |v| + "
+                     "|omega| r, times dt), more than half the neighbor skin {:.3g}: contacts can be "
+                     "missed; use a larger skin or a smaller time step", STYLE, closing, neighbor->skin);
+    skin_warned = true;
+  }
 
   // Maxima go to rank 0 only: compute pair sums pvector over ranks.
   const double here = comm->me == 0 ? 1.0 : 0.0;
@@ -448,6 +532,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
     restore_pending_forces();
     apply_contact_forces(false);
     largest_overlap = 0.0;
+    skin_warned = false;
     capped_steps = 0;
     next_cap_warning = FIRST_CAP_WARNING;
     std::fill(pvector, pvector + NUM_OUTPUTS, 0.0);

@@ -34,6 +34,7 @@ class PairGranImpulse : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  void reset_dt() override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
   void write_restart_settings(FILE *) override;
@@ -83,10 +84,12 @@ class PairGranImpulse : public Pair {
     double min_separation;
     AtomContact atoms;
   };
-  // Columns of the pending store (see pending).
-  enum PendingColumn { PENDING_FORCE = 0, PENDING_TORQUE = 3, PENDING_STEP = 6, NUM_PENDING };
+  // Columns of the pending store (see pending): the impulse and angular impulse of the step's
+  // contacts (not the force: the time step may change before the half still due is applied).
+  enum PendingColumn { PENDING_IMPULSE = 0, PENDING_ANGULAR = 3, PENDING_STEP = 6, NUM_PENDING };
 
   void allocate();
+  void refuse_unsupported();
   void grow_buffers();
   int body_of_atom(int i);
   bool may_close(int i, int j, const ActiveGrain::Vec3 &wall_velocity, double gap) const;
@@ -108,12 +111,14 @@ class PairGranImpulse : public Pair {
   Order order;
 
   double **restitution, **friction;
-  double *maxrad;    // largest radius per type (neighbor cutoff)
+  double *maxrad;    // largest radius per type, present or to be inserted (neighbor cutoff)
+  int freeze_groupbit;    // atoms held by fix freeze: bodies of infinite mass
 
   // The contact force of the last step also acts in the next initial_integrate. Across a run
   // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
-  // the atoms: force, torque and the step it belongs to (PendingColumn).
+  // the atoms as impulse, angular impulse and the step it belongs to (PendingColumn).
   class FixStoreAtom *pending;
+  double force_dt;    // time step of the contact forces now in atom->f (0: none)
 
   std::vector<RigidBodyProvider *> providers;
   std::vector<ImpulseWall *> walls;
@@ -132,6 +137,11 @@ class PairGranImpulse : public Pair {
   // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
   int nmax;
   double **fcontact, **tcontact;
+
+  // This rank's atoms in this step: largest |v| + |omega| r (for the skin warning), and largest
+  // excess of a radius over its type's neighbor-cutoff radius (an atom inserted by another means).
+  double fastest, radius_excess;
+  bool skin_warned;    // the skin warning is given once per run
 
   // This rank's solve of the last step, and since the run's setup (reduced into pvector).
   double largest_overlap;

@@ -11,12 +11,26 @@
 #include "utils.h"
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 
 using namespace LAMMPS_NS;
 using ActiveGrain::RodParameters;
+
+namespace {
+// Removes a file when it goes out of scope, also when an error unwinds past it.
+struct RemovedAtExit {
+  std::string path;
+  ~RemovedAtExit()
+  {
+    if (!path.empty()) std::remove(path.c_str());
+  }
+};
+}    // namespace
 
 /* Syntax: rod_template ID length L tail Dt nose Dn spheres N density rho
              [types Ttail Tbody Tnose] [file NAME] [taper_check yes/no] */
@@ -31,7 +45,7 @@ void RodTemplate::command(int narg, char **arg)
   RodParameters p;
   bool have[5] = {false, false, false, false, false};
   int types[3] = {1, 2, 3};
-  std::string file = id + ".mol";
+  std::string file;    // empty: a private temporary file, removed once read
   bool taper_check = false;
 
   int iarg = 1;
@@ -93,10 +107,28 @@ void RodTemplate::command(int narg, char **arg)
 
   // Rod along +x (tail to nose), centre of mass at the origin. The header carries the solid's
   // mass, COM and inertia so that molecule-based insertion uses them; the per-sphere masses
-  // already sum to the solid's mass and first moment.
+  // already sum to the solid's mass and first moment. The molecule command reads a file (on
+  // rank 0): without keyword file, one of a unique name in the temporary directory, so that
+  // jobs sharing a working directory do not overwrite each other's template.
+  RemovedAtExit temporary;
   if (comm->me == 0) {
-    FILE *fp = fopen(file.c_str(), "w");
-    if (!fp) error->one(FLERR, "Rod_template: cannot write {}: {}", file, utils::getsyserror());
+    FILE *fp = nullptr;
+    if (file.empty()) {
+      std::string pattern;
+      try {
+        pattern = (std::filesystem::temp_directory_path() / ("rod_template-" + id + "-XXXXXX")).string();
+      } catch (std::filesystem::filesystem_error &e) {
+        error->one(FLERR, "Rod_template: no temporary directory ({}): use keyword file", e.what());
+      }
+      const int fd = mkstemp(pattern.data());
+      if (fd < 0 || !(fp = fdopen(fd, "w")))
+        error->one(FLERR, "Rod_template: cannot create a temporary file {}: {} (use keyword file)",
+                   pattern, utils::getsyserror());
+      temporary.path = file = pattern;
+    } else {
+      fp = fopen(file.c_str(), "w");
+      if (!fp) error->one(FLERR, "Rod_template: cannot write {}: {}", file, utils::getsyserror());
+    }
     const int n = p.nspheres;
     fmt::print(fp, "# rod_template {}: L {} tail {} nose {} spheres {} density {}\n\n", id, p.length,
                p.tail_diameter, p.nose_diameter, n, p.density);
@@ -114,11 +146,16 @@ void RodTemplate::command(int narg, char **arg)
     fclose(fp);
     utils::logmesg(lmp,
                    "Rod_template {}: mass {:.6g}, COM {:.6g} from tail, inertia axial {:.6g} "
-                   "transverse {:.6g}, {} spheres (envelope dip {:.3g}), written to {}\n",
-                   id, g.mass, g.com, g.inertia_axial, g.inertia_transverse, n, g.max_envelope_dip, file);
+                   "transverse {:.6g}, {} spheres (envelope dip {:.3g}){}\n",
+                   id, g.mass, g.com, g.inertia_axial, g.inertia_transverse, n, g.max_envelope_dip,
+                   temporary.path.empty() ? ", written to " + file : "");
   }
-  MPI_Barrier(world);
-  input->one(fmt::format("molecule {} {}", id, file));
+  // Only rank 0 opens the file; the others pass the same name to the molecule command.
+  int length = static_cast<int>(file.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, world);
+  file.resize(length);
+  MPI_Bcast(file.data(), length, MPI_CHAR, 0, world);
+  input->one(fmt::format("molecule {} \"{}\"", id, file));
 
   // The rod's projected area as simulated (the union of its spheres' discs, as compute
   // areafrac/chunk counts it), for decks that turn an area fraction into a number of rods.

@@ -255,3 +255,58 @@ TEST_F(GranImpulse, PlatesMovingFarInOneStepGiveAWarning)
   command("run 1");
   EXPECT_EQ(lmp->error->get_numwarn(), after);
 }
+
+TEST_F(GranImpulse, MovingRegionWallContinuesExactlyAcrossARestart)
+{
+  // Beads pushed by gravity (along -x) against a cylinder wall that moves along +x at 0.02 m/s:
+  // they touch it in every step. The wall's velocity is its displacement since the last step, so
+  // the restart file must keep the region's last position; without it the first step after
+  // read_restart would see the wall move its whole displacement (0.3 mm) in one step.
+  const std::string styles = "variable dx equal 0.02*time\n"
+                             "region side cylinder z 0.005 0.005 0.004 INF INF side in move v_dx NULL NULL units box\n"
+                             "fix nve all nve/sphere\nfix g all gravity 9.81 vector -1 0 0\n"
+                             "fix side all wall/impulse/region side e 0.3 mu 0.2\n";
+  auto deck = [&]() {
+    command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+    command(kBox);
+    const double y[5] = {0.005, 0.0038, 0.0062, 0.0027, 0.0073};
+    for (int k = 0; k < 5; ++k) bead(0.0025 + 0.0002 * k, y[k], 0.001, 0.0, 0.0, 0.0);
+    command(kPair);
+    command(styles);
+  };
+  auto state = [&]() {
+    std::vector<double> s;
+    for (int id = 1; id <= 5; ++id)
+      for (const char *q : {"x", "y", "vx", "vy"}) s.push_back(value(fmt("{}[{}]", q, id)));
+    return s;
+  };
+
+  deck();
+  command("run 3000 post no");
+  const auto continuous = state();
+  // The beads rest on the wall's inside and are carried along by it.
+  EXPECT_NEAR(value("vx[1]"), 0.02, 1e-3);
+
+  deck();
+  command("run 1500 post no\nwrite_restart moving-region.restart");
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command("read_restart moving-region.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\n" + styles +
+          "run 1500 post no");
+  const auto restarted = state();
+  for (size_t k = 0; k < continuous.size(); ++k)
+    EXPECT_NEAR(restarted[k], continuous[k], 1e-12 * (k % 4 < 2 ? 0.01 : 0.1)) << k;
+}
+
+TEST_F(GranImpulse, AtomsOfFixFreezeAreBodiesOfInfiniteMass)
+{
+  // A bead hits a frozen bead head-on: it rebounds with e as from a wall, and the frozen bead
+  // (touching another frozen one: a contact skipped) takes nothing. As GRANULAR treats fix freeze.
+  bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0);
+  bead(0.006, 0.005, 0.001, 0.0, 0.0, 0.0);
+  bead(0.007, 0.005, 0.001, 0.0, 0.0, 0.0);
+  command(kPair);
+  command("group frozen id 2 3\ngroup moving id 1\nfix nve moving nve/sphere\nfix hold frozen freeze\nrun 3000");
+  EXPECT_NEAR(v(1, 'x'), -0.3 * 0.1, 1e-12);
+  EXPECT_EQ(value("x[2]"), 0.006);
+  EXPECT_EQ(v(2, 'x'), 0.0);
+}

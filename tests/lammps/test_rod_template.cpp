@@ -9,7 +9,10 @@
 #include "molecule.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numeric>
+#include <set>
 
 using namespace rod_deck;
 
@@ -154,4 +157,38 @@ TEST_F(RodTemplateTest, FixRejectsMissingPairStyle)
           "compute t all temp/sphere\nthermo_modify temp t");
   EXPECT_NE(error_of("run 0").find("Fix rigid/rod: rods need pair_style gran/impulse (found pair_style none)"),
             std::string::npos);
+}
+
+TEST_F(RodTemplateTest, WithoutFileKeywordNoFileIsLeftAnywhere)
+{
+  // Two jobs in one directory must not share a template file: without keyword file the template
+  // goes through a private temporary file, removed once read; nothing appears in the working
+  // directory or stays in the temporary directory.
+  namespace fs = std::filesystem;
+  auto listing = [](const fs::path &dir, const std::string &prefix) {
+    std::set<std::string> names;
+    for (const auto &entry : fs::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) == 0) names.insert(name);
+    }
+    return names;
+  };
+  const auto here = listing(fs::current_path(), "");
+  command(box() + "rod_template agtmpcheck length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500");
+  EXPECT_EQ(listing(fs::current_path(), ""), here);
+  EXPECT_TRUE(listing(fs::temp_directory_path(), "rod_template-agtmpcheck-").empty());
+  const int imol = lmp->atom->find_molecule("agtmpcheck");
+  ASSERT_GE(imol, 0);
+  auto *mol = lmp->atom->molecules[imol];
+  EXPECT_EQ(mol->natoms, SPHERES);
+  mol->compute_mass();
+  EXPECT_NEAR(mol->masstotal / analytic().mass, 1.0, 1e-3);
+
+  // With keyword file, the file is written there and kept.
+  command("rod_template shown length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 file shown.mol");
+  std::ifstream shown("shown.mol");
+  ASSERT_TRUE(shown.good());
+  std::string first;
+  std::getline(shown, first);
+  EXPECT_NE(first.find("rod_template shown"), std::string::npos);
 }
