@@ -8,8 +8,10 @@
 # Sides and plates:
 #   ours       the paper decks' defaults: rough plates (rms slope 0.06, 5 um), dt 1e-5 s
 #   ours-flat  the same with -var rough 0: flat plates, like for like with stock
-#   stock      flat plates (fix wall/gran has no roughness), hooke kn 2e4 N/m, dt 5e-7 s
-#              (the issue's value; stiffness.sh and README.md say why it is not re-measured)
+#   stock      flat plates (fix wall/gran has no roughness), hooke kn 3.2e5 N/m, dt 1.25e-7 s, no
+#              tangential damping: the softest kn of stiffness.sh's scan whose single-rod speed
+#              is within 2 % of the stiffest's (README.md); KN, DT_STOCK, XGT override them
+#              (KN=2e4 DT_STOCK=5e-7 XGT=1 is the issue's setting)
 # Each run settles for WARM simulated seconds, then TIME seconds are timed (LAMMPS's loop time).
 # Prints per run: atom-steps/s, simulated seconds per wall-clock hour, and that over stock's.
 #   bench/run.sh [--quick] [--np4] [path/to/lmp]
@@ -29,7 +31,7 @@ done
 warm=${WARM:-0.05}; time=${TIME:-0.1}
 [ $quick = 1 ] && { warm=${WARM:-0}; time=${TIME:-0.002}; }
 cases=(${CASES:-beads channel box})
-dt_ours=1.0e-5; dt_stock=5.0e-7
+dt_ours=1.0e-5; dt_stock=${DT_STOCK:-1.25e-7}; kn=${KN:-3.2e5}; xgt=${XGT:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$here"
@@ -60,7 +62,7 @@ row() {       # case np side plates dt log stock_simrate
 simrate() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v dt="$2" 'BEGIN{print s*dt/t*3600}'; }
 
 export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1} OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
-echo "# lmp: $("$lmp" -h 2>/dev/null | awk '/^Large-scale/ {print $(NF-2), $(NF-1), $NF; exit}') WARM $warm s, TIME $time s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# lmp: $("$lmp" -h 2>/dev/null | awk '/^Large-scale/ {print $(NF-2), $(NF-1), $NF; exit}'); stock kn $kn x_gammat $xgt dt $dt_stock; WARM $warm s, TIME $time s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-8s %-3s %-10s %-6s %-7s %-6s %-8s %-9s %-9s %-12s %-11s %s\n' \
   case np side plates dt atoms steps loop_s us/step atom-steps/s sim-s/hour x_stock
 for c in "${cases[@]}"; do
@@ -70,7 +72,7 @@ for c in "${cases[@]}"; do
   by=f; [ "$c" = box ] && by=p
   for np in "${nps[@]}"; do
     L=$(launch "$np")
-    $L "$lmp" -in in.stock -var data "$work/$c/system.data" -var by $by -var dt $dt_stock \
+    $L "$lmp" -in in.stock -var data "$work/$c/system.data" -var by $by -var dt $dt_stock -var kn $kn -var xgt $xgt \
         -var warm "$(steps_of "$warm" $dt_stock)" -var steps "$(steps_of "$time" $dt_stock)" \
         -log "$work/stock.log" -echo none >/dev/null 2>&1 || { tail -5 "$work/stock.log"; exit 1; }
     ref=$(simrate "$work/stock.log" $dt_stock)
