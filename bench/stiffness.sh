@@ -5,7 +5,7 @@
 # so dt ~ kn^-1/2). The softest kn whose speed is within 2 % of the stiffest one's is the one.
 #   bench/stiffness.sh [path/to/lmp] [kn ...]     (default: build/lmp, 5e3 1e4 2e4 4e4 8e4 3.2e5 1.28e6)
 # WARM and TIME (s) set the settling and the measured time (0.3 and 1.0); XGT the tangential
-# damping as a fraction of the normal one (in.stock's x_gammat, 1.0).
+# damping as a fraction of the normal one (in.stock's x_gammat, 0).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 lmp=${1:-$here/../build/lmp}
@@ -14,7 +14,7 @@ kns=("$@")
 [ ${#kns[@]} -gt 0 ] || kns=(5e3 1e4 2e4 4e4 8e4 3.2e5 1.28e6)
 warm=${WARM:-0.3}
 time=${TIME:-1.0}
-xgt=${XGT:-1.0}
+xgt=${XGT:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$here"
