@@ -28,6 +28,7 @@ for a in "$@"; do
     *) lmp=$a ;;
   esac
 done
+lmp=$(cd "$(dirname "$lmp")" && pwd)/$(basename "$lmp")   # absolute: the runs start in bench/
 warm=${WARM:-0.05}; time=${TIME:-0.1}
 [ $quick = 1 ] && { warm=${WARM:-0}; time=${TIME:-0.002}; }
 cases=(${CASES:-beads channel box})

@@ -12,6 +12,7 @@ lmp=${1:-$here/../build/lmp}
 shift || true
 kns=("$@")
 [ ${#kns[@]} -gt 0 ] || kns=(5e3 1e4 2e4 4e4 8e4 3.2e5 1.28e6)
+lmp=$(cd "$(dirname "$lmp")" && pwd)/$(basename "$lmp")   # absolute: the runs start in bench/
 warm=${WARM:-0.3}
 time=${TIME:-1.0}
 xgt=${XGT:-0}
