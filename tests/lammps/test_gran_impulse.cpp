@@ -1,7 +1,7 @@
 // pair gran/impulse with fix wall/impulse and fix wall/impulse/region in LAMMPS: measured
 // restitution of bead-bead, bead-plate and bead-side-wall impacts, energy input by a vibrating
 // plate, and the errors for bad input.
-#include "lammps_fixture.h"
+#include "bead_box.h"
 
 #include "atom.h"
 #include "error.h"
@@ -9,42 +9,8 @@
 #include <cmath>
 #include <string>
 
-namespace {
-
-// A box of 10 x 10 x 2 mm, SI units, 1 mm aluminium beads. z is bounded (fixed).
-const char *const kBox = R"(
-units si
-atom_style sphere
-atom_modify map array
-boundary p p f
-region box block 0 0.01 0 0.01 0 0.002
-create_box 2 box
-comm_modify vel yes
-neighbor 0.0002 bin
-timestep 1e-5
-)";
-
-const char *const kPair = R"(
-pair_style gran/impulse
-pair_coeff * * 0.3 0.05
-)";
-
-}    // namespace
-
-class GranImpulse : public LammpsTest {
+class GranImpulse : public BeadBox {
  protected:
-  void SetUp() override
-  {
-    LammpsTest::SetUp();
-    command(kBox);
-  }
-  void bead(double x, double y, double z, double vx, double vy, double vz, int type = 1)
-  {
-    command(fmt("create_atoms {} single {} {} {}", type, x, y, z));
-    const int id = (int) lmp->atom->natoms;
-    command(fmt("set atom {} diameter 0.001\nset atom {} density 2700", id, id));
-    command(fmt("velocity all set NULL NULL NULL\nset atom {} vx {} vy {} vz {}", id, vx, vy, vz));
-  }
   double v(int id, char c) { return value(fmt("v{}[{}]", c, id)); }
   template <class... Args> static std::string fmt(const std::string &f, Args... args)
   {
@@ -59,7 +25,7 @@ TEST_F(GranImpulse, TwoBeadsReboundWithTheCoefficientOfRestitution)
       command("delete_atoms group all");
       bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0);
       bead(0.006, 0.005 + dy, 0.001, -0.05, 0.0, 0.0);
-      command(kPair);
+      command(PAIR);
       command(fmt("pair_coeff * * {} 0.05", e));
       command("fix nve all nve/sphere");
       const int n1 = (int) lmp->atom->natoms - 1, n2 = n1 + 1;
@@ -82,7 +48,7 @@ TEST_F(GranImpulse, TwoBeadsReboundWithTheCoefficientOfRestitution)
 TEST_F(GranImpulse, BeadDroppedOnAStillPlateBouncesWithE)
 {
   bead(0.005, 0.005, 0.0008, 0.0, 0.0, -0.1);
-  command(kPair);
+  command(PAIR);
   command("fix nve all nve/sphere\n"
           "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01\n"
           "fix impulse all ave/time 1 1000 1000 f_plates[6]");
@@ -97,7 +63,7 @@ TEST_F(GranImpulse, BeadBetweenStillPlatesUnderGravityKeepsBouncingWithE)
 {
   // Under gravity the rebound speed is e times the impact speed within 2 per cent at dt 1e-5 s.
   bead(0.005, 0.005, 0.0015, 0.0, 0.0, 0.0);
-  command(kPair);
+  command(PAIR);
   command("fix nve all nve/sphere\n"
           "fix g all gravity 9.81 vector 0 0 -1\n"
           "fix plates all wall/impulse zlo 0.0 e 0.5 mu 0.01 gap 0.002 lid fixed\n"
@@ -118,7 +84,7 @@ TEST_F(GranImpulse, BeadOnVibratingPlateGainsEnergy)
 {
   // (2 pi f)^2 A = 6.4 g: a bead resting on the plate is thrown up.
   bead(0.005, 0.005, 0.0005, 0.0, 0.0, 0.0);
-  command(kPair);
+  command(PAIR);
   command("fix nve all nve/sphere\n"
           "fix g all gravity 9.81 vector 0 0 -1\n"
           "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 0.00004 200 0\n"
@@ -157,10 +123,10 @@ TEST_F(GranImpulse, BeadHitsSideWallRegionsWithE)
   for (const Case &c : cases) {
     command("clear");
     command("plugin load " ACTIVEGRAIN_PLUGIN_FILE);
-    command(kBox);
+    command(BOX);
     command(c.region);
     bead(c.x, c.y, 0.001, c.vx, c.vy, 0.0);
-    command(kPair);
+    command(PAIR);
     command("fix nve all nve/sphere\n"
             "fix side all wall/impulse/region wall e 0.4 mu 0.1");
     command(fmt("run {}", c.steps));
@@ -174,7 +140,7 @@ TEST_F(GranImpulse, PerTypeWallCoefficients)
 {
   bead(0.003, 0.005, 0.0008, 0.0, 0.0, -0.1, 1);
   bead(0.007, 0.005, 0.0008, 0.0, 0.0, -0.1, 2);
-  command(kPair);
+  command(PAIR);
   command("fix nve all nve/sphere\n"
           "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 type 2 0.6 0.03\n"
           "run 1000");
@@ -192,7 +158,7 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse order random").find("order must be"), std::string::npos);
-  command(kPair);
+  command(PAIR);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),
             std::string::npos);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5 mu -1").find("Fix wall/impulse: friction"),
@@ -243,7 +209,7 @@ TEST_F(GranImpulse, PlatesMovingFarInOneStepGiveAWarning)
 {
   // 25 steps per period is allowed, but the plates then move 1.26 % of a 1 mm gap per step.
   bead(0.005, 0.005, 0.0006, 0, 0, 0);
-  command(kPair);
+  command(PAIR);
   command("fix nve all nve/sphere\n"
           "fix plates all wall/impulse zlo 0.0 gap 0.001 vibrate 0.00005 200 0 e 0.3 mu 0.01\n"
           "timestep 2e-4");
@@ -268,10 +234,10 @@ TEST_F(GranImpulse, MovingRegionWallContinuesExactlyAcrossARestart)
                              "fix side all wall/impulse/region side e 0.3 mu 0.2\n";
   auto deck = [&]() {
     command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
-    command(kBox);
+    command(BOX);
     const double y[5] = {0.005, 0.0038, 0.0062, 0.0027, 0.0073};
     for (int k = 0; k < 5; ++k) bead(0.0025 + 0.0002 * k, y[k], 0.001, 0.0, 0.0, 0.0);
-    command(kPair);
+    command(PAIR);
     command(styles);
   };
   auto state = [&]() {
@@ -304,7 +270,7 @@ TEST_F(GranImpulse, AtomsOfFixFreezeAreBodiesOfInfiniteMass)
   bead(0.003, 0.005, 0.001, 0.1, 0.0, 0.0);
   bead(0.006, 0.005, 0.001, 0.0, 0.0, 0.0);
   bead(0.007, 0.005, 0.001, 0.0, 0.0, 0.0);
-  command(kPair);
+  command(PAIR);
   command("group frozen id 2 3\ngroup moving id 1\nfix nve moving nve/sphere\nfix hold frozen freeze\nrun 3000");
   EXPECT_NEAR(v(1, 'x'), -0.3 * 0.1, 1e-12);
   EXPECT_EQ(value("x[2]"), 0.006);

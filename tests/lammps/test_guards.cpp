@@ -1,7 +1,7 @@
 // What pair gran/impulse and the wall fixes refuse or warn about (rigid bodies they do not know,
 // integrators other than velocity Verlet, particles that do not fit, a coarse time step or skin),
 // and how a time step change keeps the half of an impulse still due.
-#include "lammps_fixture.h"
+#include "bead_box.h"
 
 #include "atom.h"
 #include "error.h"
@@ -12,38 +12,12 @@
 #include <cmath>
 #include <string>
 
-namespace {
-
-// A box of 10 x 10 x 2 mm, SI units, z bounded (fixed); 1 mm aluminium beads are added by bead().
-const char *const kBox = R"(
-units si
-atom_style sphere
-atom_modify map array
-boundary p p f
-region box block 0 0.01 0 0.01 0 0.002
-create_box 2 box
-comm_modify vel yes
-neighbor 0.0002 bin
-timestep 1e-5
-pair_style gran/impulse
-pair_coeff * * 0.3 0.05
-)";
-
-}    // namespace
-
-class Guards : public LammpsTest {
+class Guards : public BeadBox {
  protected:
   void SetUp() override
   {
-    LammpsTest::SetUp();
-    command(kBox);
-  }
-  void bead(double x, double y, double z, double vx, double vy, double vz, double diameter = 0.001)
-  {
-    command(fmt::format("create_atoms 1 single {} {} {}", x, y, z));
-    const int id = (int) lmp->atom->natoms;
-    command(fmt::format("set atom {} diameter {}\nset atom {} density 2700", id, diameter, id));
-    command(fmt::format("set atom {} vx {} vy {} vz {}", id, vx, vy, vz));
+    BeadBox::SetUp();
+    command(PAIR);
   }
   int warnings() { return lmp->error->get_numwarn(); }
   // Step until the plate has delivered an impulse: the step of the impact (half of it still due).
@@ -188,7 +162,7 @@ TEST_F(Guards, ParticlesThatDoNotFitAreRefused)
   command("unfix plates\nfix plates all wall/impulse zlo 0.0 gap 1.12e-3 e 0.3 mu 0.01");
   EXPECT_EQ(error_of("run 1"), "");
   // Only the fix's group counts.
-  bead(0.002, 0.002, 0.001, 0, 0, 0, 0.0015);
+  bead(0.002, 0.002, 0.001, 0, 0, 0, 1, 0.0015);
   command("group small id 1\nunfix plates\nfix plates small wall/impulse zlo 0.0 gap 1.12e-3 e 0.3 mu 0.01");
   EXPECT_EQ(error_of("run 1"), "");
   command("unfix plates\nfix plates all wall/impulse zlo 0.0 gap 1.12e-3 e 0.3 mu 0.01");
