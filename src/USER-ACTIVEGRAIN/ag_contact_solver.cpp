@@ -19,15 +19,16 @@ int ContactSolver::add_body(const RigidBodyState &body)
 }
 
 int ContactSolver::add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
-                               const ContactMaterial &material, double min_separation)
+                               const ContactMaterial &material, double min_separation,
+                               const Vec3 &gain)
 {
   return add_contact_arms(body1, body2, point - bodies_[body1].com, point - bodies_[body2].com, n,
-                          material, min_separation);
+                          material, min_separation, gain);
 }
 
 int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2,
                                     const Vec3 &n, const ContactMaterial &material,
-                                    double min_separation)
+                                    double min_separation, const Vec3 &gain)
 {
   Contact c;
   c.body1 = body1;
@@ -37,13 +38,14 @@ int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const 
   c.n = n;
   c.material = material;
   c.min_separation = min_separation;
+  c.gain = gain;
   contacts_.push_back(c);
   return num_contacts() - 1;
 }
 
 Vec3 ContactSolver::relative_velocity(const Contact &c) const
 {
-  return bodies_[c.body2].velocity_at_arm(c.r2) - bodies_[c.body1].velocity_at_arm(c.r1);
+  return bodies_[c.body2].velocity_at_arm(c.r2) - bodies_[c.body1].velocity_at_arm(c.r1) + c.gain;
 }
 
 void ContactSolver::apply(const Contact &c, const Vec3 &J)

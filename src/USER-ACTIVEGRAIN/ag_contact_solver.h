@@ -42,6 +42,10 @@ class ContactSolver {
     Vec3 n;                         // unit normal
     ContactMaterial material;
     double min_separation = 0.0;    // normal velocity the contact must at least leave with
+    // Relative velocity the contact gains from other forces (gravity, a wall's acceleration)
+    // between the time of the bodies' velocities and the moment it closes: the law acts on the
+    // relative velocity at that moment.
+    Vec3 gain;
     // Filled by solve():
     Mat3 K;
     bool isolated = false;          // the only contact of both its (movable) bodies
@@ -67,10 +71,12 @@ class ContactSolver {
   int add_body(const RigidBodyState &body);
   // Contact at a point (lever arms from the bodies' centres of mass).
   int add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
-                  const ContactMaterial &material, double min_separation = 0.0);
+                  const ContactMaterial &material, double min_separation = 0.0,
+                  const Vec3 &gain = Vec3());
   // Contact with explicit lever arms (periodic images: the caller applies the minimum image).
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
-                       const ContactMaterial &material, double min_separation = 0.0);
+                       const ContactMaterial &material, double min_separation = 0.0,
+                       const Vec3 &gain = Vec3());
 
   // Isolated contacts by Stronge's law, then each island by a compliant impact. Updates the
   // bodies' velocities.
@@ -91,7 +97,7 @@ class ContactSolver {
   int compliant_impact(const std::vector<int> &island, const Settings &settings);    // -1: capped
   double separate_overlaps(const std::vector<int> &island);    // returns the shortfall left
 
-  Vec3 relative_velocity(const Contact &c) const;
+  Vec3 relative_velocity(const Contact &c) const;    // at the moment the contact closes
   void apply(const Contact &c, const Vec3 &J);
   void apply_all(const std::vector<int> &island);
   // Bodies' counts of the island's contacts in a Jacobi step: a share of each body's impulse.

@@ -26,6 +26,9 @@ namespace {
 enum { STATE_ID, STATE_INVMASS, STATE_OFFSET, STATE_INVI = STATE_OFFSET + 3, STATE_V = STATE_INVI + 6,
        STATE_OMEGA = STATE_V + 3, NSTATE = STATE_OMEGA + 3 };
 enum { SUM_VEC, SUM_NTAIL = 3, SUM_NNOSE, NSUM };
+// Columns of `late` (per atom) and `late_move` (per body): a late impulse and its moment; for a
+// body, once summed on its owner, its displacement and rotation vector.
+enum { LATE_LINEAR, LATE_ANGULAR = 3, NLATE = 6 };
 // Columns of the per-atom output (f_ID[1] .. f_ID[4]): the rod's 3-D axis (body x, tail to
 // nose), then its body ID, which tells rods apart in dumps whatever the molecule IDs say.
 enum { OUT_AXIS, OUT_BODY = OUT_AXIS + 3, NOUT };
@@ -80,6 +83,8 @@ FixRigidRod::~FixRigidRod() noexcept
   memory->destroy(state);
   memory->destroy(output);
   memory->destroy(polar_sum);
+  memory->destroy(late);
+  memory->destroy(late_move);
 }
 
 int FixRigidRod::setmask()
@@ -276,57 +281,193 @@ bool FixRigidRod::body_of_atom(int i, ActiveGrain::RigidBodyState &b, tagint &bo
   return true;
 }
 
+void FixRigidRod::setup(int vflag)
+{
+  FixRigidSmall::setup(vflag);
+  setup_forces_due = true;
+}
+
+// The base class sums the bodies' forces in its setup, before fixes defined after it (fix gravity)
+// have added theirs: every run's first half kick would miss them, and a run continued in parts or
+// from a restart would drift from one long run (by half a step of gravity per part). Sum them
+// again from the complete setup forces.
+void FixRigidRod::initial_integrate(int vflag)
+{
+  if (setup_forces_due) {
+    compute_forces_and_torques();
+    setup_forces_due = false;
+  }
+  FixRigidSmall::initial_integrate(vflag);
+}
+
+bool FixRigidRod::add_late_impulse(int i, const Vec3 &late_impulse, const Vec3 &late_angular)
+{
+  if (i >= atom->nlocal || atom2body[i] < 0) return false;
+  late_impulse.add_to(late[i] + LATE_LINEAR);
+  late_angular.add_to(late[i] + LATE_ANGULAR);
+  late_here = true;
+  return true;
+}
+
+void FixRigidRod::final_integrate()
+{
+  move_late_bodies();
+  FixRigidSmall::final_integrate();
+}
+
+// The late impulses of this step's contacts (add_late_impulse): each body sums them on its owner,
+// moves back by late / mass and turns back by its inverse inertia times their moment, and its atoms
+// follow, before the base class completes the step. The next step's flight then starts where the
+// body would be had each impulse acted when its contact closed, not at the step's start.
+void FixRigidRod::move_late_bodies()
+{
+  int mine = late_here ? 1 : 0, anywhere = 0;
+  MPI_Allreduce(&mine, &anywhere, 1, MPI_INT, MPI_MAX, world);
+  if (!anywhere) return;
+  const int nall_body = nlocal_body + nghost_body;
+  if (nall_body > nmax_late_body) {
+    nmax_late_body = nmax_body;
+    memory->destroy(late_move);
+    memory->create(late_move, nmax_late_body, NLATE, "rigid/rod:late_move");
+  }
+  for (int ib = 0; ib < nall_body; ++ib)
+    for (int k = 0; k < NLATE; ++k) late_move[ib][k] = 0.0;
+  double **x = atom->x;
+  double unwrap[3];
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (atom2body[i] < 0) continue;
+    double *sum = late_move[atom2body[i]];
+    const Vec3 impulse(late[i] + LATE_LINEAR);
+    domain->unmap(x[i], xcmimage[i], unwrap);
+    const Vec3 arm = v3(unwrap) - v3(body[atom2body[i]].xcm);
+    impulse.add_to(sum + LATE_LINEAR);
+    (Vec3(late[i] + LATE_ANGULAR) + ActiveGrain::cross(arm, impulse)).add_to(sum + LATE_ANGULAR);
+    for (int k = 0; k < NLATE; ++k) late[i][k] = 0.0;
+  }
+  late_here = false;
+  rod_comm = RodComm::LATE_MOVE;
+  comm->reverse_comm(this, NLATE);
+  for (int ib = 0; ib < nlocal_body; ++ib) {
+    Body &b = body[ib];
+    double *move = late_move[ib];
+    double turn[3];
+    MathExtra::angmom_to_omega(move + LATE_ANGULAR, b.ex_space, b.ey_space, b.ez_space, b.inertia, turn);
+    for (int k = 0; k < 3; ++k) {
+      move[LATE_LINEAR + k] *= -1.0 / b.mass;
+      move[LATE_ANGULAR + k] = -turn[k];
+    }
+  }
+  comm->forward_comm(this, NLATE);
+  rod_comm = RodComm::NONE;
+  for (int ib = 0; ib < nall_body; ++ib) {
+    Body &b = body[ib];
+    const double *move = late_move[ib];
+    double dq[4];
+    MathExtra::vecquat(const_cast<double *>(move + LATE_ANGULAR), b.quat, dq);
+    for (int k = 0; k < 4; ++k) b.quat[k] += 0.5 * dq[k];
+    MathExtra::qnormalize(b.quat);
+    MathExtra::q_to_exyz(b.quat, b.ex_space, b.ey_space, b.ez_space);
+    for (int k = 0; k < 3; ++k) b.xcm[k] += move[LATE_LINEAR + k];
+    MathExtra::matvec(b.ex_space, b.ey_space, b.ez_space, b.xgc_body, b.xgc);
+    MathExtra::add3(b.xgc, b.xcm, b.xgc);
+  }
+  // Positions from the moved bodies; velocities as the base class's set_v will set them. No
+  // virial: the move is no force.
+  const int virial_flag = evflag;
+  evflag = 0;
+  set_xv();
+  evflag = virial_flag;
+}
+
 void FixRigidRod::grow_arrays(int nmax)
 {
   FixRigidSmall::grow_arrays(nmax);
   if (nmax <= nmax_atom) return;
   memory->grow(state, nmax, NSTATE, "rigid/rod:state");
   memory->grow(output, nmax, NOUT, "rigid/rod:output");
+  memory->grow(late, nmax, NLATE, "rigid/rod:late");
   for (int i = nmax_atom; i < nmax; ++i) {
     state[i][STATE_ID] = 0.0;
     for (int k = 0; k < NOUT; ++k) output[i][k] = 0.0;
+    for (int k = 0; k < NLATE; ++k) late[i][k] = 0.0;
   }
   nmax_atom = nmax;
   array_atom = output;
 }
 
+// Our own passes: per-atom body state forward; per-body rows (polar sums, late moves) the base
+// class's way, through the atoms that own a body (bodyown): sums back to the owner, the owner's
+// values forward to the ghost copies.
+double **FixRigidRod::body_rows(int &width) const
+{
+  if (rod_comm == RodComm::POLAR_SUM) {
+    width = NSUM;
+    return polar_sum;
+  }
+  width = NLATE;
+  return late_move;
+}
+
 int FixRigidRod::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
-  if (rod_comm != RodComm::STATE) return FixRigidSmall::pack_forward_comm(n, list, buf, pbc_flag, pbc);
   int m = 0;
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < NSTATE; ++k) buf[m++] = state[list[i]][k];
+  if (rod_comm == RodComm::STATE) {
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < NSTATE; ++k) buf[m++] = state[list[i]][k];
+  } else if (rod_comm == RodComm::LATE_MOVE) {
+    int width;
+    double **rows = body_rows(width);
+    for (int i = 0; i < n; ++i) {
+      if (bodyown[list[i]] < 0) continue;
+      for (int k = 0; k < width; ++k) buf[m++] = rows[bodyown[list[i]]][k];
+    }
+  } else {
+    return FixRigidSmall::pack_forward_comm(n, list, buf, pbc_flag, pbc);
+  }
   return m;
 }
 
 void FixRigidRod::unpack_forward_comm(int n, int first, double *buf)
 {
-  if (rod_comm != RodComm::STATE) return FixRigidSmall::unpack_forward_comm(n, first, buf);
   int m = 0;
-  for (int i = first; i < first + n; ++i)
-    for (int k = 0; k < NSTATE; ++k) state[i][k] = buf[m++];
+  if (rod_comm == RodComm::STATE) {
+    for (int i = first; i < first + n; ++i)
+      for (int k = 0; k < NSTATE; ++k) state[i][k] = buf[m++];
+  } else if (rod_comm == RodComm::LATE_MOVE) {
+    int width;
+    double **rows = body_rows(width);
+    for (int i = first; i < first + n; ++i) {
+      if (bodyown[i] < 0) continue;
+      for (int k = 0; k < width; ++k) rows[bodyown[i]][k] = buf[m++];
+    }
+  } else {
+    FixRigidSmall::unpack_forward_comm(n, first, buf);
+  }
 }
 
-// Sums of ghost bodies' polar offsets go back to the owning copy (the base class's pattern).
 int FixRigidRod::pack_reverse_comm(int n, int first, double *buf)
 {
-  if (rod_comm != RodComm::POLAR_SUM) return FixRigidSmall::pack_reverse_comm(n, first, buf);
-  int m = 0;
+  if (rod_comm != RodComm::POLAR_SUM && rod_comm != RodComm::LATE_MOVE)
+    return FixRigidSmall::pack_reverse_comm(n, first, buf);
+  int width, m = 0;
+  double **rows = body_rows(width);
   for (int i = first; i < first + n; ++i) {
     if (bodyown[i] < 0) continue;
-    for (int k = 0; k < NSUM; ++k) buf[m++] = polar_sum[bodyown[i]][k];
+    for (int k = 0; k < width; ++k) buf[m++] = rows[bodyown[i]][k];
   }
   return m;
 }
 
 void FixRigidRod::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  if (rod_comm != RodComm::POLAR_SUM) return FixRigidSmall::unpack_reverse_comm(n, list, buf);
-  int m = 0;
+  if (rod_comm != RodComm::POLAR_SUM && rod_comm != RodComm::LATE_MOVE)
+    return FixRigidSmall::unpack_reverse_comm(n, list, buf);
+  int width, m = 0;
+  double **rows = body_rows(width);
   for (int i = 0; i < n; ++i) {
     const int j = list[i];
     if (bodyown[j] < 0) continue;
-    for (int k = 0; k < NSUM; ++k) polar_sum[bodyown[j]][k] += buf[m++];
+    for (int k = 0; k < width; ++k) rows[bodyown[j]][k] += buf[m++];
   }
 }
 
@@ -341,5 +482,6 @@ void *FixRigidRod::extract(const char *name, int &dim)
 
 double FixRigidRod::memory_usage()
 {
-  return FixRigidSmall::memory_usage() + (double) nmax_atom * (NSTATE + NOUT) * sizeof(double);
+  return FixRigidSmall::memory_usage() + (double) nmax_atom * (NSTATE + NOUT + NLATE) * sizeof(double) +
+      (double) nmax_late_body * NLATE * sizeof(double);
 }

@@ -171,13 +171,20 @@ double FixWallImpulse::base_vz(double t) const
   return MY_2PI * frequency * amplitude * std::cos(MY_2PI * frequency * t + phase);
 }
 
+double FixWallImpulse::base_az(double t) const
+{
+  const double omega = MY_2PI * frequency;
+  return -omega * omega * amplitude * std::sin(omega * t + phase);
+}
+
 void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &atoms,
                                         std::vector<Contact> &contacts)
 {
   const double t = time_now();
-  const double zb = base_z(t), vb = base_vz(t);
+  const double zb = base_z(t), vb = base_vz(t), ab = base_az(t);
   const double zlid = lid == Lid::MOVING ? zb + gap : z0 + gap;
   const double vlid = lid == Lid::MOVING ? vb : 0.0;
+  const double alid = lid == Lid::MOVING ? ab : 0.0;
   // Impacts for the lock-in tally: contacts approaching faster than a small fraction of the
   // plate's peak speed (resting contacts approach at about g dt), at the drive's phase.
   const double peak_speed = MY_2PI * frequency * amplitude;
@@ -200,14 +207,14 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
     const Vec3 n_base = below.normal_up();
     const double base_gap = (centre.z - zb - below.height) * n_base.z - r;
     if (base_gap < reach)
-      contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb),
+      contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb), Vec3(0, 0, ab),
                           materials.of_type(type[i])});
     if (lid == Lid::NONE) continue;
     const ActiveGrain::SurfacePoint above = surface[LID].at(centre.x, centre.y);
     const Vec3 n_lid = -above.normal_up();
     const double lid_gap = (zlid + above.height - centre.z) * -n_lid.z - r;
     if (lid_gap < reach)
-      contacts.push_back({i, LID, n_lid, centre - n_lid * r, lid_gap, Vec3(0, 0, vlid),
+      contacts.push_back({i, LID, n_lid, centre - n_lid * r, lid_gap, Vec3(0, 0, vlid), Vec3(0, 0, alid),
                           materials.of_type(type[i])});
   }
 }

@@ -38,6 +38,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   double time_now() const;
   double base_z(double t) const;
   double base_vz(double t) const;
+  double base_az(double t) const;
 
   double z0, gap, amplitude, frequency, phase;
   Lid lid;

@@ -110,10 +110,10 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
     for (int ic = 0; ic < nc; ic++) {
       const Region::Contact &rc = region->contact[ic];
       const Vec3 n = Vec3(rc.delx, rc.dely, rc.delz) / rc.r;    // from the wall to the atom
-      Vec3 wall_velocity;
+      Vec3 wall_velocity;    // (its acceleration is not known: taken as 0)
       if (moving) region->velocity_contact(&wall_velocity.x, xbox, ic);
       contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], rc.r - radius[i], wall_velocity,
-                          materials.of_type(type[i])});
+                          Vec3(), materials.of_type(type[i])});
     }
   }
 }

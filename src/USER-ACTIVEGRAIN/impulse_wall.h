@@ -23,6 +23,7 @@ class ImpulseWall {
     ActiveGrain::Vec3 point;                // contact point (on the atom's surface)
     double gap;                             // surface separation, < 0 for an overlap
     ActiveGrain::Vec3 wall_velocity;        // velocity of the wall at the point
+    ActiveGrain::Vec3 wall_acceleration;    // ... and its acceleration
     ActiveGrain::ContactMaterial material;
   };
 

@@ -47,14 +47,14 @@ static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), freeze_groupbit(0), pending(nullptr), force_dt(0.0),
-    ghost_pairs(false), ranks(lmp), nmax(0), fcontact(nullptr), tcontact(nullptr), fastest(0.0),
+    ghost_pairs(false), ranks(lmp), nmax(0), contact_sums(nullptr), fastest(0.0),
     radius_excess(0.0), skin_warned(false), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
   restartinfo = 1;
   finitecutflag = 1;
-  comm_reverse = 6;
+  comm_reverse = NUM_CONTACT_COLUMNS;
   // Contact forces reach owners through this style's own reverse communication, so the f.r
   // virial over owned and ghost atoms would be wrong: no virial from this style.
   no_virial_fdotr_compute = 1;
@@ -72,8 +72,7 @@ PairGranImpulse::~PairGranImpulse()
     memory->destroy(friction);
     delete[] maxrad;
   }
-  memory->destroy(fcontact);
-  memory->destroy(tcontact);
+  memory->destroy(contact_sums);
   delete[] pvector;
 }
 
@@ -162,9 +161,11 @@ void PairGranImpulse::init_style()
 
   providers.clear();
   walls.clear();
+  gravities.clear();
   for (Fix *fix : modify->get_fix_list()) {
     if (auto provider = dynamic_cast<RigidBodyProvider *>(fix)) providers.push_back(provider);
     if (auto wall = dynamic_cast<ImpulseWall *>(fix)) walls.push_back(wall);
+    if (utils::strmatch(fix->style, "^gravity")) gravities.push_back(fix);
   }
 
   // A rigid body's solver rank also solves contacts between two ghost atoms (a ghost atom of
@@ -231,15 +232,17 @@ void PairGranImpulse::refuse_unsupported()
 void PairGranImpulse::reset_dt()
 {
   if (!pending || force_dt <= 0.0 || force_dt == update->dt) return;
-  const double change = 1.0 / update->dt - 1.0 / force_dt;
   double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
   const double step = (double) update->ntimestep;
   for (int i = 0; i < atom->nlocal; i++)
-    if (saved[i][PENDING_STEP] == step)
+    if (saved[i][PENDING_STEP] == step) {
+      // atom->f holds J / force_dt, with J = saved force times its time step
+      const double change = saved[i][PENDING_DT] * (1.0 / update->dt - 1.0 / force_dt);
       for (int k = 0; k < 3; k++) {
-        f[i][k] += saved[i][PENDING_IMPULSE + k] * change;
-        torque[i][k] += saved[i][PENDING_ANGULAR + k] * change;
+        f[i][k] += saved[i][PENDING_FORCE + k] * change;
+        torque[i][k] += saved[i][PENDING_TORQUE + k] * change;
       }
+    }
   force_dt = update->dt;
 }
 
@@ -260,15 +263,10 @@ void PairGranImpulse::grow_buffers()
   const int nall = atom->nlocal + atom->nghost;
   if (nall > nmax) {
     nmax = atom->nmax;
-    memory->destroy(fcontact);
-    memory->destroy(tcontact);
-    memory->create(fcontact, nmax, 3, "pair:fcontact");
-    memory->create(tcontact, nmax, 3, "pair:tcontact");
+    memory->destroy(contact_sums);
+    memory->create(contact_sums, nmax, NUM_CONTACT_COLUMNS, "pair:contact_sums");
   }
-  if (nall > 0) {
-    memset(&fcontact[0][0], 0, sizeof(double) * 3 * nall);
-    memset(&tcontact[0][0], 0, sizeof(double) * 3 * nall);
-  }
+  if (nall > 0) memset(&contact_sums[0][0], 0, sizeof(double) * NUM_CONTACT_COLUMNS * nall);
   atom_body.assign(nall, -1);
   spin_speed.resize(nall);
   for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
@@ -320,15 +318,32 @@ Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
   return point - Vec3(com_image);
 }
 
+// Acceleration of atom i from fix gravity (velocity units per time).
+Vec3 PairGranImpulse::gravity_of_atom(int i) const
+{
+  Vec3 a;
+  for (const auto &g : gravity_now)
+    if (atom->mask[i] & g.first) a += g.second;
+  return a;
+}
+
 void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms, const Vec3 &n,
                                   double gap, const ContactMaterial &material, const Vec3 &r1,
-                                  const Vec3 &r2)
+                                  const Vec3 &r2, const Vec3 &atom_acceleration,
+                                  const Vec3 &wall_acceleration)
 {
   const double dt = update->dt;
   // Predictive contact: in contact if the gap closes within this step at the current normal
   // velocity, or already overlaps; an overlap must at least open at beta * overlap / dt.
   const Vec3 u = solver.body(body2).velocity_at_arm(r2) - solver.body(body1).velocity_at_arm(r1);
   if (gap + dot(u, n) * dt >= 0.0) return;
+  // u is the velocity of the last drift, half a step ago; the contact closes a time t_c after
+  // the step's start (0 for an overlap, at most dt). By then the atoms have gained their
+  // relative acceleration times dt/2 + t_c, and a wall its own times t_c: the law acts on the
+  // relative velocity at that moment, and the atoms move back by J t_c / m (move_late_atoms).
+  const double approach_now = -dot(u + atom_acceleration * (0.5 * dt), n);
+  const double time_to_contact = gap <= 0.0 ? 0.0 : approach_now * dt > gap ? gap / approach_now : dt;
+  const Vec3 gain = atom_acceleration * (0.5 * dt + time_to_contact) - wall_acceleration * time_to_contact;
   const double min_separation = gap < 0.0 ? beta * -gap / dt : 0.0;
   tagint *tag = atom->tag;
   const int wall_index =
@@ -341,8 +356,9 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
        static_cast<std::uint64_t>(atoms.surface), static_cast<std::uint64_t>(std::get<2>(identity)),
        static_cast<std::uint64_t>(std::get<3>(identity))});
   AtomContact located = atoms;
-  located.approach = std::max(0.0, -dot(u, n));
-  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, located});
+  located.approach = std::max(0.0, -dot(u + gain, n));
+  located.time_to_contact = time_to_contact;
+  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, gain, located});
   largest_overlap = std::max(largest_overlap, -gap);
 }
 
@@ -357,7 +373,7 @@ void PairGranImpulse::add_found_contacts()
   else if (order == Order::TAG) std::sort(found.begin(), found.end(), ascending);
   else std::sort(found.begin(), found.end(), descending);
   for (const FoundContact &c : found) {
-    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation);
+    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation, c.gain);
     atom_contacts.push_back(c.atoms);
   }
 }
@@ -403,8 +419,8 @@ void PairGranImpulse::gather_pair_contacts()
       if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
       if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
       const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
-      add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0}, n, gap, material, lever_arm(i, bi, point),
-                  lever_arm(j, bj, point));
+      add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0, 0.0}, n, gap, material, lever_arm(i, bi, point),
+                  lever_arm(j, bj, point), gravity_of_atom(j) - gravity_of_atom(i));
     }
   }
 }
@@ -420,28 +436,55 @@ void PairGranImpulse::gather_wall_contacts()
       const int b = body_of_atom(c.atom);
       if (solver.body(b).is_static()) continue;    // a frozen atom
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));
-      add_contact(w, b, {-1, c.atom, wall, c.surface, c.point, 0.0}, c.normal, c.gap, c.material, Vec3(),
-                  lever_arm(c.atom, b, c.point));
+      add_contact(w, b, {-1, c.atom, wall, c.surface, c.point, 0.0, 0.0}, c.normal, c.gap, c.material, Vec3(),
+                  lever_arm(c.atom, b, c.point), gravity_of_atom(c.atom), c.wall_acceleration);
     }
   }
 }
 
+// Each contact's impulse as a force J / dt (velocity Verlet applies half of it at this step's end
+// and half at the next step's start, before the atoms move), and as a late impulse J t_c: a
+// contact that closes a time t_c after the step's start has its atoms fly freely until then, so
+// they move J t_c / m less in the next step than the force alone would move them.
 void PairGranImpulse::distribute_impulses()
 {
   const double to_force = 1.0 / update->dt;
   double **x = atom->x;
-  auto push = [&](int i, const Vec3 &F, const Vec3 &point) {
-    const Vec3 torque = cross(point - Vec3(x[i]), F);
-    F.add_to(fcontact[i]);
-    torque.add_to(tcontact[i]);
+  auto push = [&](int i, const Vec3 &J, const Vec3 &point, double time_to_contact) {
+    const Vec3 arm = point - Vec3(x[i]);
+    double *sums = contact_sums[i];
+    (J * to_force).add_to(sums + FORCE);
+    cross(arm, J * to_force).add_to(sums + TORQUE);
+    if (time_to_contact == 0.0) return;
+    (J * time_to_contact).add_to(sums + LATE);
+    cross(arm, J * time_to_contact).add_to(sums + LATE_ANGULAR);
   };
   for (int c = 0; c < solver.num_contacts(); c++) {
     const AtomContact &ac = atom_contacts[c];
     const Vec3 &J = solver.impulse(c);
-    const Vec3 F = J * to_force;
-    push(ac.atom2, F, ac.point);
-    if (ac.atom1 >= 0) push(ac.atom1, -F, ac.point);
+    push(ac.atom2, J, ac.point, ac.time_to_contact);
+    if (ac.atom1 >= 0) push(ac.atom1, -J, ac.point, ac.time_to_contact);
     else ac.wall->add_delivered_impulse(ac.surface, J, ac.approach);
+  }
+}
+
+// Owned atoms with a late impulse move back by it: a bead by late / mass now, the atoms of a
+// rigid body through its provider (the whole body moves and turns, in its final_integrate).
+// Atoms held by fix freeze do not move.
+void PairGranImpulse::move_late_atoms()
+{
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *sums = contact_sums[i];
+    const Vec3 late(sums + LATE);
+    if (norm2(late) == 0.0 || (atom->mask[i] & freeze_groupbit)) continue;
+    bool in_body = false;
+    for (RigidBodyProvider *provider : providers)
+      if (provider->add_late_impulse(i, late, Vec3(sums + LATE_ANGULAR))) {
+        in_body = true;
+        break;
+      }
+    if (!in_body) (late * (-1.0 / atom->rmass[i])).add_to(x[i]);
   }
 }
 
@@ -452,31 +495,34 @@ void PairGranImpulse::apply_contact_forces(bool store)
   const double step = (double) update->ntimestep, dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {
     for (int k = 0; k < 3; k++) {
-      f[i][k] += fcontact[i][k];
-      torque[i][k] += tcontact[i][k];
+      f[i][k] += contact_sums[i][FORCE + k];
+      torque[i][k] += contact_sums[i][TORQUE + k];
     }
     if (!store) continue;
     for (int k = 0; k < 3; k++) {
-      saved[i][PENDING_IMPULSE + k] = fcontact[i][k] * dt;
-      saved[i][PENDING_ANGULAR + k] = tcontact[i][k] * dt;
+      saved[i][PENDING_FORCE + k] = contact_sums[i][FORCE + k];
+      saved[i][PENDING_TORQUE + k] = contact_sums[i][TORQUE + k];
     }
+    saved[i][PENDING_DT] = dt;
     saved[i][PENDING_STEP] = step;
   }
   force_dt = dt;
 }
 
 // The contact forces of the step this run continues from (if any): their half due in its
-// initial_integrate.
+// initial_integrate, as they were (bit for bit) unless the time step has changed since.
 void PairGranImpulse::restore_pending_forces()
 {
   double **saved = pending->astore;
   const double step = (double) update->ntimestep, dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++)
-    if (saved[i][PENDING_STEP] == step)
+    if (saved[i][PENDING_STEP] == step) {
+      const double scale = saved[i][PENDING_DT] / dt;    // exactly 1 for the same time step
       for (int k = 0; k < 3; k++) {
-        fcontact[i][k] = saved[i][PENDING_IMPULSE + k] / dt;
-        tcontact[i][k] = saved[i][PENDING_ANGULAR + k] / dt;
+        contact_sums[i][FORCE + k] = saved[i][PENDING_FORCE + k] * scale;
+        contact_sums[i][TORQUE + k] = saved[i][PENDING_TORQUE + k] * scale;
       }
+    }
 }
 
 // Solver health into pvector (see Output), and a warning when impacts keep hitting the cap.
@@ -544,6 +590,12 @@ void PairGranImpulse::compute(int eflag, int vflag)
   }
 
   ranks.assign(providers);
+  gravity_now.clear();
+  for (Fix *gravity : gravities) {
+    int dim;
+    const auto *gvec = static_cast<const double *>(gravity->extract("gvec", dim));
+    if (gvec) gravity_now.emplace_back(gravity->groupbit, Vec3(gvec) * force->ftm2v);
+  }
   solver.clear();
   body_index.clear();
   atom_contacts.clear();
@@ -555,16 +607,14 @@ void PairGranImpulse::compute(int eflag, int vflag)
   distribute_impulses();
   comm->reverse_comm(this);
   apply_contact_forces(true);
+  move_late_atoms();
 }
 
 int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++)
-    for (int k = 0; k < 3; k++) {
-      buf[m++] = fcontact[i][k];
-      buf[m++] = tcontact[i][k];
-    }
+    for (int k = 0; k < NUM_CONTACT_COLUMNS; k++) buf[m++] = contact_sums[i][k];
   return m;
 }
 
@@ -573,10 +623,7 @@ void PairGranImpulse::unpack_reverse_comm(int n, int *list, double *buf)
   int m = 0;
   for (int i = 0; i < n; i++) {
     const int j = list[i];
-    for (int k = 0; k < 3; k++) {
-      fcontact[j][k] += buf[m++];
-      tcontact[j][k] += buf[m++];
-    }
+    for (int k = 0; k < NUM_CONTACT_COLUMNS; k++) contact_sums[j][k] += buf[m++];
   }
 }
 
@@ -646,7 +693,7 @@ void *PairGranImpulse::extract(const char *name, int &dim)
 
 double PairGranImpulse::memory_usage()
 {
-  return 6.0 * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
+  return (double) NUM_CONTACT_COLUMNS * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
       ranks.memory_usage() +
       (double) found.capacity() * sizeof(FoundContact) +
       (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);

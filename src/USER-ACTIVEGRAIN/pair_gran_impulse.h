@@ -69,6 +69,7 @@ class PairGranImpulse : public Pair {
     int surface;
     ActiveGrain::Vec3 point;
     double approach;           // normal approach speed before the solve (>= 0)
+    double time_to_contact;    // after the step's start at which the gap closes (0: overlap)
   };
   // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
   using ContactIdentity = std::tuple<int, int, tagint, tagint>;
@@ -82,11 +83,13 @@ class PairGranImpulse : public Pair {
     ActiveGrain::Vec3 r1, r2, n;
     ActiveGrain::ContactMaterial material;
     double min_separation;
+    ActiveGrain::Vec3 gain;
     AtomContact atoms;
   };
-  // Columns of the pending store (see pending): the impulse and angular impulse of the step's
-  // contacts (not the force: the time step may change before the half still due is applied).
-  enum PendingColumn { PENDING_IMPULSE = 0, PENDING_ANGULAR = 3, PENDING_STEP = 6, NUM_PENDING };
+  // Columns of the pending store (see pending): the force and torque of the step's contacts, the
+  // time step they belong to (their impulse is force times it: a time step change keeps the
+  // impulse), and the step.
+  enum PendingColumn { PENDING_FORCE = 0, PENDING_TORQUE = 3, PENDING_DT = 6, PENDING_STEP, NUM_PENDING };
 
   void allocate();
   void refuse_unsupported();
@@ -96,12 +99,16 @@ class PairGranImpulse : public Pair {
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
                    double gap, const ActiveGrain::ContactMaterial &material,
-                   const ActiveGrain::Vec3 &r1, const ActiveGrain::Vec3 &r2);
+                   const ActiveGrain::Vec3 &r1, const ActiveGrain::Vec3 &r2,
+                   const ActiveGrain::Vec3 &atom_acceleration,
+                   const ActiveGrain::Vec3 &wall_acceleration = ActiveGrain::Vec3());
+  ActiveGrain::Vec3 gravity_of_atom(int i) const;
   void gather_pair_contacts();
   void gather_wall_contacts();
   void add_found_contacts();
   void distribute_impulses();
   void apply_contact_forces(bool store);
+  void move_late_atoms();
   void restore_pending_forces();
   void record_solve(const ActiveGrain::ContactSolver::Result &result);
 
@@ -116,12 +123,15 @@ class PairGranImpulse : public Pair {
 
   // The contact force of the last step also acts in the next initial_integrate. Across a run
   // boundary (or a restart) setup() must restore it instead of solving anew; it travels with
-  // the atoms as impulse, angular impulse and the step it belongs to (PendingColumn).
+  // the atoms as force, torque, their time step and the step they belong to (PendingColumn).
   class FixStoreAtom *pending;
   double force_dt;    // time step of the contact forces now in atom->f (0: none)
 
   std::vector<RigidBodyProvider *> providers;
   std::vector<ImpulseWall *> walls;
+  std::vector<class Fix *> gravities;    // fix gravity: accelerations a contact gains before it closes
+  // This step's acceleration (velocity units) and group of each fix gravity.
+  std::vector<std::pair<int, ActiveGrain::Vec3>> gravity_now;
 
   ActiveGrain::ContactSolver solver;
   std::vector<FoundContact> found;
@@ -134,9 +144,12 @@ class PairGranImpulse : public Pair {
   bool ghost_pairs;       // rigid bodies exist: a full neighbor list with ghosts
   ContactRanks ranks;     // which rank solves which contact
 
-  // Contact forces and torques on owned and ghost atoms, summed onto owners by reverse comm.
+  // Per owned and ghost atom, summed onto owners by reverse comm: the contact force and torque,
+  // and the late impulse and its moment about the atom (each impulse times the time after the
+  // step's start at which its contact closed: the atom then moves that impulse / mass less).
+  enum ContactColumn { FORCE = 0, TORQUE = 3, LATE = 6, LATE_ANGULAR = 9, NUM_CONTACT_COLUMNS = 12 };
   int nmax;
-  double **fcontact, **tcontact;
+  double **contact_sums;
 
   // This rank's atoms in this step: largest |v| + |omega| r (for the skin warning), and largest
   // excess of a radius over its type's neighbor-cutoff radius (an atom inserted by another means).

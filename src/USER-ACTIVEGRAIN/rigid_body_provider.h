@@ -17,6 +17,13 @@ class RigidBodyProvider {
   // For atom i (owned or ghost): false if it belongs to no body of this provider; otherwise
   // the body's current state and a body ID that is the same on every rank and every atom of it.
   virtual bool body_of_atom(int i, ActiveGrain::RigidBodyState &body, tagint &body_id) const = 0;
+  // For owned atom i: false if it belongs to no body of this provider; otherwise take a late
+  // impulse delivered to the atom in this step's force computation (impulse times the time
+  // after the step's start at which its contact closed) and its moment about the atom. Before
+  // the step ends the body moves back by (sum of late impulses) / mass and turns back by the
+  // inverse inertia times their moment, as if each impulse had acted when its contact closed.
+  virtual bool add_late_impulse(int i, const ActiveGrain::Vec3 &late,
+                                const ActiveGrain::Vec3 &late_angular) = 0;
 };
 
 // The copy of atom j (owned or ghost image) nearest atom i: how the styles pick one image of

@@ -247,8 +247,11 @@ TEST_F(GranImpulse, MovingRegionWallContinuesExactlyAcrossARestart)
     return s;
   };
 
+  // The reference runs the same two halves without the restart: LAMMPS recomputes the
+  // simulation time (and so the region's position) at a run's start, which differs in the last
+  // bits from one long run, and the beads' resting contacts amplify such differences.
   deck();
-  command("run 3000 post no");
+  command("run 1500 post no\nrun 1500 post no");
   const auto continuous = state();
   // The beads rest on the wall's inside and are carried along by it.
   EXPECT_NEAR(value("vx[1]"), 0.02, 1e-3);

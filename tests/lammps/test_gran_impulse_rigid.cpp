@@ -48,6 +48,8 @@ class FixTestRigid : public LAMMPS_NS::Fix, public LAMMPS_NS::RigidBodyProvider 
     id = 1;
     return true;
   }
+  // No integrator moves this body: late impulses are claimed and not applied.
+  bool add_late_impulse(int i, const Vec3 &, const Vec3 &) override { return atom->mask[i] & groupbit; }
   RigidBodyState body;
 };
 

@@ -15,10 +15,6 @@ using namespace rod_deck;
 
 namespace {
 
-// Radii along the template are linear, r = a + k x: tilted by asin(-k) (nose down), the rod
-// lies flat on a plane, its 9 spheres touching it at once.
-const double SLOPE = 0.5 * (NOSE - TAIL) / LENGTH;
-const double TILT_DEG = std::asin(-SLOPE) * 180.0 / M_PI;
 const int BOUNCE_STEPS = 150;    // 0.05 mm at 0.1 m/s: the rod hits after ~50 steps
 
 struct Bounce {
@@ -45,12 +41,7 @@ std::string bounce_deck(const std::string &file, const Bounce &setup)
          "fix molecule_ids all property/atom mol ghost yes\n"
          "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 4 box\n"
          "comm_modify vel yes cutoff 6e-3\nneighbor 5e-4 bin\n" + rod_template(file) +
-      "create_atoms 0 single 0 0 5e-4 mol rod 1 units box rotate 0 0 0 1\n"
-      "displace_atoms all rotate 0 0 5e-4 0 1 0 " + std::to_string(TILT_DEG) + " units box\n"
-      "displace_atoms all rotate 0 0 5e-4 0 0 1 30 units box\n"
-      "variable bottom atom z-radius\ncompute lowest all reduce min v_bottom\n"
-      "thermo_style custom step c_lowest\nrun 0 post no\n"
-      "variable lift equal 5e-5-c_lowest\ndisplace_atoms all move 0 0 ${lift} units box\n" +
+      flat_rod(5e-5) +
       (setup.region_wall ? "displace_atoms all move 6e-3 6e-3 0 units box\n" : "") +
       "group rod type 1 2 3\n" +
       (setup.bead ? "create_atoms 4 single $(x[9]) $(y[9]) $(z[9]+radius[9]+6e-4) units box\n"
