@@ -109,13 +109,14 @@ def main():
     ap.add_argument("--time", type=float, default=10.0)
     ap.add_argument("--nx", type=int, default=24)
     ap.add_argument("--ny", type=int, default=14)
+    ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     a = ap.parse_args()
-    print(f"Beads alone, {2 * a.nx * a.ny} beads, rough {a.rough:g} (L {a.length * 1e3:g} mm), {a.time:g} s, dt 1e-5\n")
+    print(f"Beads alone, {2 * a.nx * a.ny} beads, rough {a.rough:g} (L {a.length * 1e3:g} mm), {a.time:g} s, dt {a.dt:g}\n")
     print("| phi_b | v_h/(A omega), first third | last third | abs(psi6) | local abs(psi6_j) | eta6 | MSD 1 s (d^2) "
           "| MSD last half (d^2) |\n|---|---|---|---|---|---|---|---|")
     for phi in (float(s) for s in a.phi.split(",")):
-        m = measure(*run(a.lmp, phi, a.rough, a.length, a.time, a.nx, a.ny))
+        m = measure(*run(a.lmp, phi, a.rough, a.length, a.time, a.nx, a.ny, a.dt))
         print(f"| {phi:g} | {m['vh_first']:.4f} | {m['vh_last']:.4f} | {m['psi6']:.2f} | {m['psi6_local']:.2f} "
               f"| {m['eta6']:.2f} | {m['msd1']:.3g} | {m['msd_half']:.3g} |", flush=True)
 
