@@ -47,7 +47,8 @@ def tree(tmp_path):
     copy.mkdir()
     for part in ("cmake", "src"):
         shutil.copytree(LAMMPS_SOURCE / part, copy / part, symlinks=True)
-    return copy
+    yield copy
+    shutil.rmtree(copy)    # 50 MB each: pytest keeps its last three runs' folders
 
 
 def snapshot(tree):
