@@ -1,7 +1,14 @@
 // fix rigid/rod: tapered polar rods as rigid bodies (fix rigid/small) with the solid's true
 // inertia, a body frame whose x axis is the polar axis (tail -> nose), and per-atom body state
 // for the contact styles (RigidBodyProvider), owned and ghost atoms. See docs/fix_rigid_rod.rst.
-#pragma once
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(rigid/rod,FixRigidRod);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_RIGID_ROD_H
+#define LMP_FIX_RIGID_ROD_H
 
 #include "fix_rigid_small.h"
 #include "rigid_body_provider.h"
@@ -55,3 +62,6 @@ class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
 };
 
 }    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,6 +1,13 @@
 // rod_template: build a LAMMPS molecule template for a tapered polar rod from its physical
 // parameters (see docs/rod_template.rst).
-#pragma once
+#ifdef COMMAND_CLASS
+// clang-format off
+CommandStyle(rod_template,RodTemplate);
+// clang-format on
+#else
+
+#ifndef LMP_ROD_TEMPLATE_H
+#define LMP_ROD_TEMPLATE_H
 
 #include "command.h"
 
@@ -13,3 +20,6 @@ class RodTemplate : public Command {
 };
 
 }    // namespace LAMMPS_NS
+
+#endif
+#endif
