@@ -417,6 +417,9 @@ class PhaseThresholds:
     layer_fraction: float = 0.5   # share of rods in active layers for an active interface
     layer_contrast: float = 0.1   # phi_b ahead minus behind a layer for it to be active
     layer_alignment: float = 0.5  # |<p>| of a layer's rods for it to be active
+    jammed_fraction: float = 0.84  # phi_b + phi_r from which an arrested packing counts as jammed
+    jammed_mobility: float = 0.1  # rms bead displacement between frames, in bead diameters, below
+                                  # which the dynamics count as arrested
 
 
 def segregation_index(frame, geometry, cell=None):
@@ -440,14 +443,32 @@ def segregation_index(frame, geometry, cell=None):
     return float(1 - at_rods / mean_b)
 
 
+def bead_mobility(frame, previous):
+    """Root-mean-square displacement of the beads from ``previous`` to ``frame``, in units of
+    the median bead diameter (minimum image across periodic sides). The beads are matched by
+    atom ID; both frames must hold the same beads."""
+    ids, prev_ids = frame.ids[frame.is_bead], previous.ids[previous.is_bead]
+    if len(ids) == 0:
+        raise ValueError("bead_mobility: the frame has no beads")
+    if len(ids) != len(prev_ids) or np.any(ids != prev_ids):
+        raise ValueError("bead_mobility: the two frames do not hold the same beads (atom IDs)")
+    xy, r, _ = frame.beads()
+    d = frame.box.minimum_image(xy - previous.beads()[0])
+    return float(np.sqrt(np.mean(np.sum(d * d, axis=1))) / (2 * np.median(r)))
+
+
 @dataclass
 class PhaseResult:
     phase: str
     observables: dict = field(default_factory=dict)
 
 
-def phase_observables(frame, geometry, thresholds=None):
+def phase_observables(frame, geometry, thresholds=None, previous=None):
     """The measured observables :func:`classify_phase` decides on.
+
+    ``phi_total`` = phi_b + phi_r; with an earlier frame ``previous`` of the same run,
+    ``mobility``: the beads' rms displacement since then in bead diameters
+    (:func:`bead_mobility`; NaN without one) and ``interval``, the time between the frames.
 
     Layer observables: those of the densest layer (``layer_*``, ``phi_ahead``,
     ``phi_behind``), and over up to two layers the number of *active* ones (aligned and
@@ -457,7 +478,9 @@ def phase_observables(frame, geometry, thresholds=None):
     t = thresholds or PhaseThresholds()
     rods = frame.rods()
     phi_b, phi_r = global_area_fractions(frame, geometry)
-    obs = {"phi_b": phi_b, "phi_r": phi_r, "n_rods": len(rods)}
+    obs = {"phi_b": phi_b, "phi_r": phi_r, "phi_total": phi_b + phi_r, "n_rods": len(rods),
+           "mobility": float("nan") if previous is None else bead_mobility(frame, previous),
+           "interval": float("nan") if previous is None else frame.time - previous.time}
     if len(rods) == 0:  # beads only: nothing to order, segregate or layer
         obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
                    phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
@@ -478,11 +501,15 @@ def phase_observables(frame, geometry, thresholds=None):
     return obs
 
 
-def classify_phase(frame, geometry, thresholds=PhaseThresholds()):
-    """Isotropic / flock / segregated / condensed (by an active interface).
+def classify_phase(frame, geometry, thresholds=PhaseThresholds(), previous=None):
+    """Jammed / condensed (by an active interface) / segregated / flock / isotropic.
 
     Decided in this order on measured observables (:func:`phase_observables`):
 
+    0. ``jammed`` (only with ``previous``, an earlier frame of the same run): the total area
+       fraction phi_b + phi_r is at least ``jammed_fraction`` and the beads' rms
+       displacement since ``previous`` is below ``jammed_mobility`` bead diameters (arrested
+       dynamics; take frames far enough apart that a fluid's beads move further);
     1. ``condensed``: active layers (aligned, |<p>| >= ``layer_alignment``, with the bead
        fraction ahead exceeding the one behind by ``layer_contrast``; one layer, or two
        trapping a condensate) hold at least ``layer_fraction`` of the rods;
@@ -490,9 +517,11 @@ def classify_phase(frame, geometry, thresholds=PhaseThresholds()):
     3. ``flock``: rod polar order |<p>| >= ``polar_order``;
     4. ``isotropic`` otherwise.
     """
-    obs = phase_observables(frame, geometry, thresholds)
+    obs = phase_observables(frame, geometry, thresholds, previous)
     t = thresholds
-    if obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
+    if obs["phi_total"] >= t.jammed_fraction and obs["mobility"] < t.jammed_mobility:
+        phase = "jammed"
+    elif obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
         phase = "condensed"
     elif obs["segregation"] >= t.segregation:
         phase = "segregated"

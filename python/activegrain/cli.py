@@ -1,4 +1,4 @@
-"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory,continuum} ...``.
+"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory,continuum,sweep} ...``.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
@@ -7,6 +7,10 @@ pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r
 """
 import argparse
 import json
+import os
+import pathlib
+import shutil
+import subprocess
 import sys
 
 import numpy as np
@@ -107,11 +111,14 @@ def cmd_polar(args, out):
 
 
 def cmd_phase(args, out):
+    if args.lag < 0:
+        raise ValueError(f"--lag {args.lag}: frames back, 0 or more")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
     rows = []
-    for fr in frames:
-        res = analysis.classify_phase(fr, geom)
+    for k, fr in enumerate(frames):
+        previous = frames[k - args.lag] if args.lag and k >= args.lag else None
+        res = analysis.classify_phase(fr, geom, previous=previous)
         row = {"step": fr.step, "phase": res.phase}
         row.update({k: v for k, v in res.observables.items() if k != "layer_coord"})
         rows.append(row)
@@ -207,6 +214,30 @@ def cmd_continuum(args, out):
         out.write(f"wrote {args.movie}\n")
 
 
+def cmd_sweep(args, out):
+    from . import sweep
+    cfg = sweep.SweepConfig(
+        deck=pathlib.Path(args.deck).resolve(), phi_b=args.phi_b, phi_r=args.phi_r, seeds=args.seeds,
+        time=args.time, out=pathlib.Path(args.out).resolve(), ranks=args.ranks,
+        variables=[tuple(v) for v in args.var or []], lmp=args.lmp, mpirun=args.mpirun, dump=args.dump,
+        frames=args.frames, lag=args.lag, geometry=args.geometry, r_in=args.r_in, r_out=args.r_out,
+        length_unit=args.length_unit, timeout=args.timeout)
+    results, ran = sweep.run_sweep(cfg)
+    out.write(f"{ran} run(s) made, {len(results) - ran} already done; "
+              f"wrote {cfg.out / 'phases.txt'}, phases.csv, phase_diagram.png\n")
+    for r in results:
+        out.write(f"phi_b {r['phi_b']:g} phi_r {r['phi_r']:g} seed {r['seed']}: {r['phase']}\n")
+
+
+def _default_lmp():
+    """$ACTIVEGRAIN_LMP, else lmp on PATH, else the build's wrapper next to this package."""
+    if os.environ.get("ACTIVEGRAIN_LMP"):
+        return os.environ["ACTIVEGRAIN_LMP"]
+    if shutil.which("lmp"):
+        return "lmp"
+    return str(pathlib.Path(__file__).resolve().parents[2] / "build" / "lmp")
+
+
 def build_parser():
     ap = argparse.ArgumentParser(prog="python3 -m activegrain", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -240,8 +271,10 @@ def build_parser():
     _add_dump_args(p)
     p.set_defaults(func=cmd_polar)
 
-    p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed")
+    p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed/jammed")
     _add_dump_args(p)
+    p.add_argument("--lag", type=int, default=1,
+                   help="bead mobility (for jammed) against the frame this many frames earlier (0: none)")
     p.set_defaults(func=cmd_phase)
 
     p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
@@ -313,6 +346,32 @@ def build_parser():
     p.add_argument("--movie", help="animation (.gif)")
     p.add_argument("--fps", type=int, default=10)
     p.set_defaults(func=cmd_continuum)
+
+    p = sub.add_parser("sweep", help="run a deck over a (phi_b, phi_r) grid and seeds: phase table and diagram",
+                       description="Run DECK (from its folder) for every phi_b x phi_r x seed with mpirun, "
+                       "resumably (a run's folder with result.json is skipped), classify the last frames "
+                       "of each run's dump and write phases.txt, phases.csv and phase_diagram.png into --out.")
+    p.add_argument("deck", help="LAMMPS input deck taking -var phi_b phi_r seed time out (the example decks)")
+    p.add_argument("--phi-b", type=float, nargs="+", required=True, help="bead area fractions")
+    p.add_argument("--phi-r", type=float, nargs="+", required=True, help="rod area fractions")
+    p.add_argument("--seeds", type=int, nargs="+", default=[2024], help="seeds (one run each per point)")
+    p.add_argument("--time", type=float, required=True, help="simulated time per run (-var time)")
+    p.add_argument("--out", required=True, help="folder of the sweep (one sub-folder per run)")
+    p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"),
+                   help="a fixed deck variable, repeatable (e.g. --var Lx 80e-3)")
+    p.add_argument("--ranks", type=int, default=1, help="MPI ranks per run (mpirun -np)")
+    p.add_argument("--lmp", default=_default_lmp(), help="LAMMPS executable with the plugin (default: "
+                   "$ACTIVEGRAIN_LMP, lmp on PATH, or build/lmp)")
+    p.add_argument("--mpirun", default="mpirun")
+    p.add_argument("--timeout", type=float, help="seconds allowed per run")
+    p.add_argument("--dump", help="dump file a run writes (default: the only *.dump in its folder)")
+    p.add_argument("--frames", type=int, default=5, help="classify this many last frames (majority)")
+    p.add_argument("--lag", type=int, default=1, help="bead mobility against the frame this many earlier")
+    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
+    p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius (dump units)")
+    p.add_argument("--r-out", type=float, help="annulus outer radius (dump units)")
+    p.add_argument("--length-unit", type=float, default=1e-3, help="divide dump lengths by this (metres -> d)")
+    p.set_defaults(func=cmd_sweep)
     return ap
 
 
@@ -320,7 +379,7 @@ def main(argv=None, out=None):
     args = build_parser().parse_args(argv)
     try:
         args.func(args, out or sys.stdout)
-    except (ValueError, RuntimeError, OSError, FloatingPointError) as e:
+    except (ValueError, RuntimeError, OSError, FloatingPointError, subprocess.TimeoutExpired) as e:
         sys.stderr.write(f"activegrain {args.command}: {e}\n")
         return 1
     return 0

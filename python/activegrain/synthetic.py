@@ -4,6 +4,8 @@ Used by the tests (known answers) and to draw the documentation figures without 
 simulation. Lengths in bead diameters unless stated; rods are the paper's: 4.5 long,
 tapered from 1.1 (tail) to 0.7 (nose), built from ``n_spheres`` overlapping spheres.
 """
+from dataclasses import replace
+
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -158,6 +160,38 @@ def phase_configuration(phase, seed=0, length=124.0, width=31.0, packing="lattic
     else:
         raise ValueError(f"unknown packing '{packing}' (lattice or relaxed)")
     return make_frame(box, beads, 0.5, centres, axes)
+
+
+def hexagonal_beads(x0, x1, y0, y1, spacing=1.0):
+    """Bead centres on a hexagonal lattice of ``spacing`` (1: touching beads of diameter 1,
+    area fraction pi / (2 sqrt 3) = 0.907) filling [x0, x1] x [y0, y1], rows along x."""
+    dy = spacing * np.sqrt(3) / 2
+    rows = np.arange(y0, y1 + 1e-9, dy)
+    return np.concatenate([np.column_stack([np.arange(x0 + (k % 2) * spacing / 2, x1 - spacing / 2 + 1e-9,
+                                                      spacing), np.full_like(np.arange(x0 + (k % 2) * spacing / 2,
+                                                      x1 - spacing / 2 + 1e-9, spacing), y)])
+                           for k, y in enumerate(rows)])
+
+
+def dense_configuration(seed=0, length=62.0, width=31.0, n_rods=10, spacing=1.001):
+    """A channel packed like the paper's jammed corner: beads on a hexagonal lattice of
+    ``spacing`` (total area fraction 0.853 at 1.001) around ``n_rods`` rods at random
+    places and orientations (the beads they overlap removed)."""
+    rng = np.random.default_rng(seed)
+    box = channel_box(length, width)
+    centres, axes = random_rods(n_rods, (3, length - 3, 3, width - 3), rng)
+    beads = hexagonal_beads(0, length, 0.5, width - 0.5, spacing)
+    return make_frame(box, remove_overlaps(beads, box, centres, axes), 0.5, centres, axes)
+
+
+def displaced(frame, rms, seed=0, dt=1.0):
+    """A copy of ``frame`` ``dt`` later whose beads have moved by Gaussian steps of rms length
+    ``rms`` (rods unchanged): the next frame of a run with that bead mobility."""
+    rng = np.random.default_rng(seed)
+    pos = frame.pos.copy()
+    beads = frame.is_bead
+    pos[beads, :2] = frame.box.wrap(pos[beads, :2] + rng.normal(0, rms / np.sqrt(2), (beads.sum(), 2)))
+    return replace(frame, pos=pos, step=frame.step + 1, time=frame.time + dt)
 
 
 def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=2000, tol=1e-3):

@@ -241,3 +241,40 @@ def test_layer_windows_are_clipped_at_walls_of_a_rectangle():
     fr2 = S.make_frame(box, [(0.3, 10.0), (39.8, 10.0)], 0.5)
     p = A.area_fraction_profile(fr2, g, "x", 4)
     assert np.sum(p.fraction * g.bin_areas("x", p.edges)) == pytest.approx(2 * np.pi * 0.25)
+
+
+# --------------------------------------------------------------------------- jammed
+
+def test_bead_mobility_is_the_rms_displacement_in_bead_diameters():
+    fr = S.dense_configuration()
+    moved = S.displaced(fr, 0.3, seed=4)
+    assert A.bead_mobility(moved, fr) == pytest.approx(0.3, rel=0.05)   # ~1500 beads
+    assert A.bead_mobility(fr, fr) == 0.0
+    with pytest.raises(ValueError, match="same beads"):
+        A.bead_mobility(S.phase_configuration("isotropic"), fr)
+
+
+def test_dense_arrested_packing_is_jammed_and_only_that():
+    fr = S.dense_configuration()
+    geom = geometry_from_box(fr.box)
+    obs = A.phase_observables(fr, geom)
+    assert obs["phi_total"] >= 0.85 and obs["phi_r"] > 0.01
+    # arrested: beads rattle by 2 % of a diameter between frames
+    res = A.classify_phase(S.displaced(fr, 0.02, seed=1), geom, previous=fr)
+    assert res.phase == "jammed" and res.observables["mobility"] < 0.03
+    assert res.observables["interval"] == 1.0
+    # the same packing with beads that move half a diameter between frames is not
+    assert A.classify_phase(S.displaced(fr, 0.5, seed=1), geom, previous=fr).phase != "jammed"
+    # without a previous frame there is no mobility to decide on
+    res = A.classify_phase(fr, geom)
+    assert res.phase != "jammed" and np.isnan(res.observables["mobility"])
+    # a packing below the jammed fraction with still beads is not jammed either
+    t = A.PhaseThresholds(jammed_fraction=obs["phi_total"] + 0.01)
+    assert A.classify_phase(S.displaced(fr, 0.02, seed=1), geom, t, previous=fr).phase != "jammed"
+
+
+def test_still_dilute_beads_are_not_jammed():
+    fr = S.phase_configuration("isotropic")
+    geom = geometry_from_box(fr.box)
+    res = A.classify_phase(S.displaced(fr, 0.01, seed=2), geom, previous=fr)
+    assert res.phase == "isotropic" and res.observables["phi_total"] < 0.7

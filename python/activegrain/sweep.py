@@ -1,0 +1,280 @@
+"""Phase diagrams from runs of an example deck over a grid of (phi_b, phi_r) and seeds.
+
+``python3 -m activegrain sweep DECK --phi-b 0.6 0.7 --phi-r 0.03 --seeds 1 2 --time 20 --out DIR``
+runs ``DECK`` (from its own folder, as the example decks expect) once per grid point and seed,
+with ``-var phi_b``, ``-var phi_r``, ``-var seed``, ``-var time`` and ``-var out`` set and any
+fixed ``--var NAME VALUE`` added, under ``mpirun -np RANKS`` (or directly for one rank). Each run
+lives in its own folder ``DIR/phi_b<..>_phi_r<..>_seed<..>``; ``result.json`` there marks it done
+and holds the area fractions the deck reached, the phase that
+:func:`activegrain.analysis.classify_phase` gives the last frames of its dump (the majority
+over them, each frame against the one ``lag`` frames earlier for the mobility that decides
+"jammed") with the observables, and its wall time. A second call skips the runs that are done
+(an unfinished run's folder is started afresh), so an interrupted sweep resumes. Progress goes
+to stderr with the time left estimated from the finished runs' wall times. At the end the
+table (``phases.txt``, ``phases.csv``) and the phase diagram (``phase_diagram.png``, markers
+per phase on phi_b and phi_r axes, as the paper's Figs. 2a and 3a) are written into ``DIR``.
+"""
+import csv
+import itertools
+import json
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import time
+from collections import Counter
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import analysis, io
+from .geometry import geometry_from_box
+
+RESULT = "result.json"
+REACHED = re.compile(r"ActiveGrain \w+: phi_b = ([\d.]+) \(asked [^)]*\), phi_r = ([\d.]+) \(asked")
+# the phases in the legend's order, with their markers (open for the disordered ones)
+MARKERS = {"isotropic": ("o", "none", "tab:gray"), "flock": ("^", "tab:blue", "tab:blue"),
+           "segregated": ("s", "tab:orange", "tab:orange"), "condensed": ("*", "tab:red", "tab:red"),
+           "jammed": ("X", "black", "black")}
+TABLE_KEYS = ("phi_b", "phi_r", "seed", "phase", "phi_b_reached", "phi_r_reached", "phi_total", "P",
+              "segregation", "active_layer_fraction", "layer_contrast", "mobility", "frames", "wall_s")
+
+
+@dataclass
+class SweepConfig:
+    deck: pathlib.Path
+    phi_b: list
+    phi_r: list
+    seeds: list
+    time: float
+    out: pathlib.Path
+    ranks: int = 1
+    variables: list = field(default_factory=list)   # [(name, value), ...]
+    lmp: str = "lmp"
+    mpirun: str = "mpirun"
+    dump: str = None          # dump file name in a run's folder (default: its only *.dump)
+    frames: int = 5           # last frames classified
+    lag: int = 1              # frames between a frame and the one its mobility is measured from
+    geometry: str = "auto"
+    r_in: float = 0.0
+    r_out: float = None
+    length_unit: float = 1e-3
+    timeout: float = None     # seconds per run
+
+    def check(self):
+        """ValueError naming the first bad setting."""
+        if not self.deck.is_file():
+            raise ValueError(f"deck {self.deck} not found")
+        for name in ("phi_b", "phi_r", "seeds"):
+            if not getattr(self, name):
+                raise ValueError(f"--{name.replace('_', '-')}: give at least one value")
+        for name in ("phi_b", "phi_r"):
+            bad = [v for v in getattr(self, name) if not 0 <= v < 1]
+            if bad:
+                raise ValueError(f"--{name.replace('_', '-')} {bad[0]}: an area fraction must be in [0, 1)")
+        if len(set(self.seeds)) != len(self.seeds) or any(s <= 0 for s in self.seeds):
+            raise ValueError(f"--seeds {self.seeds}: positive and distinct (LAMMPS seeds)")
+        if not self.time > 0:
+            raise ValueError(f"--time {self.time}: the run length must be positive")
+        if self.ranks < 1:
+            raise ValueError(f"--ranks {self.ranks}: at least 1")
+        if self.frames < 1 or self.lag < 0:
+            raise ValueError(f"--frames {self.frames} --lag {self.lag}: frames >= 1, lag >= 0")
+        taken = {"phi_b", "phi_r", "seed", "time", "out"}
+        for name, _ in self.variables:
+            if name in taken:
+                raise ValueError(f"--var {name}: set by the sweep itself (use --phi-b, --phi-r, --seeds, --time, --out)")
+        if self.geometry == "annulus" and self.r_out is None:
+            raise ValueError("--geometry annulus needs --r-out")
+
+
+def points(cfg):
+    """The runs of the sweep: (phi_b, phi_r, seed), phi_r slowest."""
+    return [(b, r, s) for r, b, s in itertools.product(cfg.phi_r, cfg.phi_b, cfg.seeds)]
+
+
+def run_dir(cfg, phi_b, phi_r, seed):
+    return cfg.out / f"phi_b{phi_b:.4f}_phi_r{phi_r:.4f}_seed{seed}"
+
+
+def command(cfg, phi_b, phi_r, seed, folder):
+    lmp = [cfg.lmp, "-in", cfg.deck.name, "-log", str(folder / "log.lammps"),
+           "-var", "phi_b", repr(phi_b), "-var", "phi_r", repr(phi_r), "-var", "seed", str(seed),
+           "-var", "time", repr(cfg.time), "-var", "out", str(folder)]
+    for name, value in cfg.variables:
+        lmp += ["-var", name, value]
+    if cfg.ranks == 1:
+        return lmp
+    root = ["--allow-run-as-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []
+    return [cfg.mpirun, *root, "-np", str(cfg.ranks), *lmp]
+
+
+def _dump_of(cfg, folder):
+    if cfg.dump:
+        path = folder / cfg.dump
+        if not path.is_file():
+            raise RuntimeError(f"{folder}: the deck wrote no {cfg.dump}")
+        return path
+    dumps = sorted(folder.glob("*.dump"))
+    if len(dumps) != 1:
+        raise RuntimeError(f"{folder}: {len(dumps)} dump files, name the one to classify with --dump")
+    return dumps[0]
+
+
+def classify_run(cfg, dump):
+    """Majority phase of the last ``cfg.frames`` frames and their mean observables."""
+    frames = list(io.read_dump(dump, length_unit=cfg.length_unit))
+    if len(frames) < 1 + cfg.lag:
+        raise RuntimeError(f"{dump}: {len(frames)} frames, fewer than lag + 1 = {cfg.lag + 1}")
+    first = max(cfg.lag, len(frames) - cfg.frames)
+    u = cfg.length_unit
+    geom = geometry_from_box(frames[0].box, cfg.geometry, None, cfg.r_in / u,
+                             None if cfg.r_out is None else cfg.r_out / u)
+    results = [analysis.classify_phase(frames[k], geom, previous=frames[k - cfg.lag] if cfg.lag else None)
+               for k in range(first, len(frames))]
+    counts = Counter(r.phase for r in results)
+    phase = max(counts, key=lambda p: (counts[p], -list(MARKERS).index(p)))
+    numeric = {k for k, v in results[0].observables.items() if isinstance(v, (int, float))}
+    mean = {k: float(np.nanmean([r.observables[k] for r in results]))
+            if np.isfinite([r.observables[k] for r in results]).any() else float("nan") for k in numeric}
+    return phase, dict(counts), mean, len(results)
+
+
+def run_point(cfg, phi_b, phi_r, seed):
+    """Run one point (unless done) and return its result dict."""
+    folder = run_dir(cfg, phi_b, phi_r, seed)
+    done = folder / RESULT
+    if done.is_file():
+        return json.loads(done.read_text()), False
+    if folder.exists():
+        shutil.rmtree(folder)          # an unfinished run starts afresh
+    folder.mkdir(parents=True)
+    cmd = command(cfg, phi_b, phi_r, seed, folder)
+    start = time.monotonic()
+    with open(folder / "screen.txt", "w") as screen:
+        proc = subprocess.run(cmd, cwd=cfg.deck.parent, stdout=screen, stderr=subprocess.STDOUT,
+                              timeout=cfg.timeout)
+    wall = time.monotonic() - start
+    text = (folder / "screen.txt").read_text(errors="replace")
+    if proc.returncode != 0 or "ERROR" in text:
+        errors = [l for l in text.splitlines() if "ERROR" in l]
+        raise RuntimeError(f"run {folder.name} failed (exit {proc.returncode}): "
+                           f"{errors[0] if errors else text[-500:]} (see {folder / 'screen.txt'})")
+    reached = REACHED.findall(text)
+    phase, counts, obs, n = classify_run(cfg, _dump_of(cfg, folder))
+    result = {"phi_b": phi_b, "phi_r": phi_r, "seed": seed, "phase": phase, "phase_counts": counts,
+              "frames": n, "phi_b_reached": float(reached[-1][0]) if reached else float("nan"),
+              "phi_r_reached": float(reached[-1][1]) if reached else float("nan"),
+              "wall_s": wall, "command": cmd, "observables": obs}
+    tmp = folder / (RESULT + ".tmp")
+    tmp.write_text(json.dumps(result, indent=1))
+    tmp.replace(done)                 # the marker appears complete or not at all
+    return result, True
+
+
+def _clock(seconds):
+    seconds = int(round(seconds))
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
+def progress_line(done, total, walls, elapsed, width=30):
+    """``[#####-----] 3/8 runs, 0:01:20 elapsed, about 0:02:10 left`` (time left from the mean
+    wall time of the runs finished, or ``?`` before any)."""
+    filled = int(round(width * done / total)) if total else width
+    left = _clock(np.mean(walls) * (total - done)) if walls else "?"
+    return f"[{'#' * filled}{'-' * (width - filled)}] {done}/{total} runs, {_clock(elapsed)} elapsed, about {left} left"
+
+
+def table_rows(results):
+    rows = []
+    for r in results:
+        row = {k: r.get(k, r["observables"].get(k, float("nan"))) for k in TABLE_KEYS}
+        rows.append(row)
+    return rows
+
+
+def write_table(results, folder):
+    rows = table_rows(results)
+    with open(folder / "phases.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, TABLE_KEYS)
+        w.writeheader()
+        w.writerows(rows)
+    with open(folder / "phases.txt", "w") as f:
+        f.write(" ".join(TABLE_KEYS) + "\n")
+        for row in rows:
+            f.write(" ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in row.values()) + "\n")
+    return folder / "phases.txt", folder / "phases.csv"
+
+
+def majority(results):
+    """Per (phi_b, phi_r): the phase most of its seeds show, and the seed count behind it."""
+    by_point = {}
+    for r in results:
+        by_point.setdefault((r["phi_b"], r["phi_r"]), []).append(r["phase"])
+    out = {}
+    for key, phases in by_point.items():
+        counts = Counter(phases)
+        phase = max(counts, key=lambda p: (counts[p], -list(MARKERS).index(p)))
+        out[key] = (phase, counts[phase], len(phases))
+    return out
+
+
+def phase_diagram(results, path, title=None):
+    """Markers per phase on (phi_b, phi_r), as the paper's Figs. 2a and 3a; a point where the
+    seeds disagree shows its majority phase with ``k/n`` beside it."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.0, 3.8))
+    points_ = majority(results)
+    for phase, (marker, face, edge) in MARKERS.items():
+        xy = [k for k, v in points_.items() if v[0] == phase]
+        ax.scatter([p[0] for p in xy], [p[1] for p in xy], marker=marker, s=90, facecolors=face,
+                   edgecolors=edge, linewidths=1.5, label=phase)
+    for (b, r), (_, k, n) in points_.items():
+        if k < n:
+            ax.annotate(f"{k}/{n}", (b, r), textcoords="offset points", xytext=(6, 6), fontsize=7)
+    phi_b = [k[0] for k in points_]
+    phi_r = [k[1] for k in points_]
+    pad_b = 0.02 + 0.05 * (max(phi_b) - min(phi_b))
+    pad_r = 0.005 + 0.05 * (max(phi_r) - min(phi_r))
+    ax.set_xlim(min(phi_b) - pad_b, max(phi_b) + pad_b)
+    ax.set_ylim(max(0.0, min(phi_r) - pad_r), max(phi_r) + pad_r)
+    ax.set_xlabel(r"$\phi_b$")
+    ax.set_ylabel(r"$\phi_r$")
+    if title:
+        ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5), frameon=False)
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return path
+
+
+def run_sweep(cfg, log=sys.stderr):
+    """Run (or resume) the sweep; returns the results in grid order and the number of runs
+    made by this call. The time left is the mean wall time of the finished runs (from earlier
+    calls too) times the runs still to make."""
+    cfg.check()
+    cfg.out.mkdir(parents=True, exist_ok=True)
+    todo = points(cfg)
+    results = {p: json.loads((run_dir(cfg, *p) / RESULT).read_text()) for p in todo
+               if (run_dir(cfg, *p) / RESULT).is_file()}
+    pending = [p for p in todo if p not in results]
+    walls = [r["wall_s"] for r in results.values()]
+    if results:
+        log.write(f"{len(results)} of {len(todo)} runs already done in {cfg.out}\n")
+    start = time.monotonic()
+    for k, p in enumerate(pending):
+        log.write("\r" + progress_line(k, len(pending), walls, time.monotonic() - start)
+                  + f"  now phi_b {p[0]} phi_r {p[1]} seed {p[2]} ")
+        log.flush()
+        results[p], _ = run_point(cfg, *p)
+        walls.append(results[p]["wall_s"])
+    log.write("\r" + progress_line(len(pending), len(pending), walls, time.monotonic() - start) + " " * 40 + "\n")
+    ordered = [results[p] for p in todo]
+    write_table(ordered, cfg.out)
+    phase_diagram(ordered, cfg.out / "phase_diagram.png", title=cfg.deck.name)
+    return ordered, len(pending)
