@@ -318,10 +318,12 @@ Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
   return point - Vec3(com_image);
 }
 
-// Acceleration of atom i from fix gravity (velocity units per time).
+// Acceleration of atom i from fix gravity (velocity units per time); none for an atom held by
+// fix freeze.
 Vec3 PairGranImpulse::gravity_of_atom(int i) const
 {
   Vec3 a;
+  if (atom->mask[i] & freeze_groupbit) return a;
   for (const auto &g : gravity_now)
     if (atom->mask[i] & g.first) a += g.second;
   return a;

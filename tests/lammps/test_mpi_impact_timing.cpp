@@ -56,6 +56,34 @@ TEST_F(ImpactTiming, BeadReboundsToRestitutionSquaredAtLargeTimeSteps)
     }
 }
 
+// The same on a bead held by fix freeze (a body of infinite mass that gravity does not move):
+// only the falling bead gains velocity before the contact closes.
+TEST_F(ImpactTiming, BeadReboundsFromAFrozenBeadToRestitutionSquared)
+{
+  const double e = 0.3, h = 1.07e-4;
+  command(fmt::format(
+      "units si\natom_style sphere\natom_modify map array\nboundary p p f\ncomm_modify vel yes\n"
+      "region box block 0 0.004 0 0.004 -1e-4 4e-3 units box\ncreate_box 1 box\n"
+      "create_atoms 1 single 0.002 0.002 5e-4 units box\n"
+      "create_atoms 1 single 0.002 0.002 {} units box\n"
+      "set type 1 diameter 1e-3\nset type 1 density 2700\n"
+      "group base id 1\ngroup falling id 2\n"
+      "pair_style gran/impulse\npair_coeff * * {} 0.05\n"
+      "fix gravity all gravity 9.81 vector 0 0 -1\nfix hold base freeze\nfix integrate all nve/sphere",
+      1.5e-3 + h, e));
+  command("variable ztop equal z[2]\nvariable vtop equal vz[2]");
+  bool rising = false;
+  double apex = -1.0;
+  for (int k = 0; k < 400; ++k) {
+    command("timestep 5e-5\nrun 1 post no");
+    const double vz = value("v_vtop");
+    if (vz > 0.0) rising = true;
+    if (rising) apex = std::max(apex, value("v_ztop") - 1.5e-3);
+    if (rising && vz < 0.0) break;
+  }
+  EXPECT_NEAR(std::sqrt(apex / h), e, 2e-3 * e);
+}
+
 // A rod of equal end diameters dropped flat: all its spheres meet the plate at once (one compliant
 // impact through fix rigid/rod's body), and it rebounds without turning, to e^2 h.
 TEST_F(ImpactTiming, FlatRodReboundsToRestitutionSquaredAtLargeTimeSteps)
