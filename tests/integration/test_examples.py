@@ -12,8 +12,8 @@ from mpi_launch import mpi_prefix
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
-STEPS = 2000          # four vibration periods: beads and rods meet the plates and each other
-DT = 1.0e-5
+STEPS = 400           # four vibration periods at the decks' dt: beads and rods meet the plates and each other
+DT = 5.0e-5           # the decks' time step
 TOLERANCE = 0.005
 
 # (example folder, deck, extra variables, the name the deck reports under)

@@ -13,7 +13,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 LMP = os.environ.get("ACTIVEGRAIN_LMP", str(ROOT / "build" / "lmp"))
 DECK = ROOT / "examples" / "channel" / "in.channel-small"
-# a 16 x 8 mm channel, 1000 steps, a frame every 200: seconds per run
+# a 16 x 8 mm channel, 200 steps, a frame every 40: seconds per run
 TINY = ["--var", "Lx", "16e-3", "--var", "Ly", "8e-3", "--var", "dump", "0.002", "--var", "profile", "0.005"]
 PHASES = {"isotropic", "flock", "segregated", "condensed", "jammed"}
 
