@@ -1,0 +1,114 @@
+// Pressure and stress of pair gran/impulse and its wall fixes against statics, on 1, 2 and 4
+// ranks (test_mpi_*). A contact force is its impulse over the time step, J / dt; averaged over
+// many steps it is the static force. The virial W = sum over contacts of r (x) F (a pair: the
+// centre-to-centre vector; a wall: from the contact point to the atom's centre) then follows from
+// the loads alone.
+#include "bead_box.h"
+
+#include "domain.h"
+#include "force.h"
+
+#include <cmath>
+#include <string>
+
+namespace {
+constexpr double G = 9.81;
+constexpr double RADIUS = 0.5e-3;
+constexpr double DT = 1e-5;
+constexpr int SETTLE = 2000;    // a multiple of WINDOW: fix ave/time averages whole windows
+constexpr int WINDOW = 2000;
+}    // namespace
+
+class StaticPressure : public BeadBox {
+ protected:
+  // The bead box cut into slabs along x: rows along x cross sub-domain boundaries.
+  void SetUp() override
+  {
+    LammpsTest::SetUp();
+    command(std::string("processors * 1 1\n") + BOX);
+  }
+  double bead_mass() { return 2700.0 * 4.0 / 3.0 * M_PI * RADIUS * RADIUS * RADIUS; }
+  double volume() { return lmp->domain->xprd * lmp->domain->yprd * lmp->domain->zprd; }
+  // Virial (energy units) from a pressure component of compute pressure (pressure units).
+  double virial_of(const std::string &pressure) { return value(pressure) * volume() / lmp->force->nktv2p; }
+  void report(const std::string &what, double measured, double expected)
+  {
+    int me = 0, nprocs = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &me);
+    MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
+    if (me == 0)
+      std::printf("[ measured ] %s, %d ranks: %.6g (statics %.6g, relative error %.2g)\n", what.c_str(), nprocs,
+                  measured, expected, measured / expected - 1.0);
+  }
+  // Settle, then average over WINDOW steps the given quantities (fix ave/time "av").
+  void settle_and_average(const std::string &quantities)
+  {
+    command("fix integrate all nve/sphere\nthermo 0\nrun " + std::to_string(SETTLE) + " post no\n"
+            "fix av all ave/time 1 " + std::to_string(WINDOW) + " " + std::to_string(WINDOW) + " " +
+            quantities + "\nrun " + std::to_string(WINDOW) + " post no");
+  }
+};
+
+// A monolayer of 25 beads resting on a still base plate at z = 0 under gravity, no lid, no
+// bead touching another. Statics: the plate pushes each bead up with its weight m g, at the
+// contact point a radius R below its centre, so the plate's force per area is the weight per
+// area and the plate's virial is W_zz = N m g R; the pair virial vanishes. (The same from the
+// whole system: -sum_i r_i . F_i over gravity at the centres and the plate at z_plate gives
+// N m g (z_centre - z_plate) = N m g R, independent of the origin.) A virial from the atoms'
+// absolute heights, or none at all, fails.
+TEST_F(StaticPressure, MonolayerRestingOnAPlate)
+{
+  command(PAIR);
+  for (int ix = 0; ix < 5; ++ix)
+    for (int iy = 0; iy < 5; ++iy) bead(0.001 + 0.002 * ix, 0.001 + 0.002 * iy, RADIUS, 0, 0, 0);
+  const double n = 25.0, weight = n * bead_mass() * G;
+  command("fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01\nfix_modify plates virial yes\n"
+          "fix gravity all gravity 9.81 vector 0 0 -1\n"
+          "compute all_virial all pressure NULL virial\ncompute pair_virial all pressure NULL pair\n"
+          "compute wall_virial all pressure NULL fix");
+  settle_and_average("f_plates[6] c_all_virial[3] c_pair_virial[3] c_wall_virial[3] c_all_virial[1]");
+  const double area = lmp->domain->xprd * lmp->domain->yprd;
+  EXPECT_NEAR(value("f_av[1]") / DT / area, weight / area, 1e-3 * weight / area);
+  const double expected = weight * RADIUS;
+  report("plate force", value("f_av[1]") / DT, weight);
+  report("virial zz, pair + plate", virial_of("f_av[2]"), expected);
+  EXPECT_NEAR(virial_of("f_av[2]"), expected, 1e-2 * expected);
+  EXPECT_NEAR(virial_of("f_av[4]"), expected, 1e-2 * expected);
+  EXPECT_NEAR(virial_of("f_av[3]"), 0.0, 1e-6 * expected);
+  EXPECT_NEAR(virial_of("f_av[5]"), 0.0, 1e-6 * expected);    // nothing pushes sideways
+}
+
+// A row of N = 6 touching beads along x, pressed by a sideways gravity g (-x) against the plane
+// x = 1 mm of fix wall/impulse/region; no plates (the beads float at mid-height). Statics: the
+// contact between beads k and k+1 (counted from the wall) carries the weight of the N - k - 1
+// beads beyond it, over a centre distance 2R; the wall carries all N, a radius from the first
+// centre. So W_xx(pair) = sum_k 2R (N - k - 1) m g = R m g N (N - 1) and W_xx(wall) = R m g N.
+// The row crosses sub-domain boundaries on 2 and 4 ranks (processors * 1 1). The per-atom
+// virial of compute stress/atom (its negative) sums to the pair's global one in a step.
+TEST_F(StaticPressure, RowPressedAgainstASideWall)
+{
+  command(PAIR);
+  const int n = 6;
+  for (int k = 0; k < n; ++k) bead(0.001 + RADIUS + 2 * RADIUS * k, 0.005, 0.001, 0, 0, 0);
+  const double mg = bead_mass() * G;
+  command("region side plane 0.001 0 0 1 0 0\nfix side all wall/impulse/region side e 0.3 mu 0.05\n"
+          "fix_modify side virial yes\nfix gravity all gravity 9.81 vector -1 0 0\n"
+          "compute pair_virial all pressure NULL pair\ncompute wall_virial all pressure NULL fix\n"
+          "compute stress all stress/atom NULL pair\ncompute stress_sum all reduce sum c_stress[1] c_stress[4]");
+  settle_and_average("c_pair_virial[1] c_wall_virial[1] c_pair_virial[2] c_pair_virial[4]");
+  const double pair_expected = RADIUS * mg * n * (n - 1), wall_expected = RADIUS * mg * n;
+  report("virial xx, pair", virial_of("f_av[1]"), pair_expected);
+  report("virial xx, side wall", virial_of("f_av[2]"), wall_expected);
+  EXPECT_NEAR(virial_of("f_av[1]"), pair_expected, 1e-2 * pair_expected);
+  EXPECT_NEAR(virial_of("f_av[2]"), wall_expected, 1e-2 * wall_expected);
+  EXPECT_NEAR(virial_of("f_av[3]"), 0.0, 1e-6 * pair_expected);
+  EXPECT_NEAR(virial_of("f_av[4]"), 0.0, 1e-6 * pair_expected);
+
+  // One step's per-atom virials against the global one of the same step.
+  command("thermo_style custom step c_pair_virial[1] c_pair_virial[4] c_stress_sum[1] c_stress_sum[2]\n"
+          "thermo 1\nrun 1 post no");
+  const double pair_xx = virial_of("c_pair_virial[1]");
+  ASSERT_GT(pair_xx, 0.1 * pair_expected);    // the row is loaded in this step
+  EXPECT_NEAR(-value("c_stress_sum[1]"), pair_xx, 1e-9 * pair_xx);
+  EXPECT_NEAR(-value("c_stress_sum[2]"), virial_of("c_pair_virial[4]"), 1e-9 * pair_xx);
+}
