@@ -362,6 +362,7 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
   located.approach = std::max(0.0, -dot(u + gain, n));
   located.time_to_contact = time_to_contact;
   located.velocity_before = u;
+  located.wall_velocity = solver.body(body1).v + wall_acceleration * time_to_contact;
   found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, gain, located});
   largest_overlap = std::max(largest_overlap, -gap);
 }
@@ -634,11 +635,11 @@ void PairGranImpulse::compute(int eflag, int vflag)
 
 // Energies of the step's solve (Output, and per surface to the wall fixes). The bodies' kinetic
 // energy (translation and rotation) changes by exactly the sum over contacts of J . (u_before +
-// u_after) / 2, u the relative velocity at the contact, plus J . v_wall at wall contacts (the
-// wall's work). The law sees u plus the contact's gain (gravity, the plate's acceleration until
-// it closes): the energy a contact loses is counted in that frame, so that an impact alone loses
-// (1 - e^2) of its kinetic energy of approach; the kinetic energy then differs from the balance
-// by J . gain (the gain's work, of order g dt / approach of the dissipation). A contact whose
+// u_after) / 2, u the relative velocity at the contact, plus J . v_wall at wall contacts. The law
+// sees u plus the contact's gain (gravity, the plate's acceleration until the contact closes), and
+// so does this count: a contact loses J . (u + gain) averaged (an impact alone: (1 - e^2) of its
+// energy of approach), a wall works with its velocity when the contact closes. What is left of
+// the kinetic energy change is gravity's part of the gain, J . g (dt/2 + t_c), negligible. A contact whose
 // overlap correction made it leave at its minimum separation velocity s, faster than
 // restitution would (e times its approach a), is credited 1/2 m (s^2 - (e a)^2) to the
 // correction (m = 1 / n.K.n, the contact's effective mass: exact for a frictionless contact
@@ -662,7 +663,7 @@ void PairGranImpulse::tally_energy()
     if (ac.atom1 >= 0) {
       dissipated_pair += lost;
     } else {
-      const double work = dot(contact.impulse, body1.v);
+      const double work = dot(contact.impulse, ac.wall_velocity);
       wall_work += work;
       dissipated_wall += lost;
       ac.wall->add_energy(ac.surface, work, lost, push);

@@ -77,6 +77,7 @@ class PairGranImpulse : public Pair {
     double approach;           // normal approach speed before the solve (>= 0)
     double time_to_contact;    // after the step's start at which the gap closes (0: overlap)
     ActiveGrain::Vec3 velocity_before;    // relative velocity at the contact before the solve
+    ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes
   };
   // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
   using ContactIdentity = std::tuple<int, int, tagint, tagint>;
