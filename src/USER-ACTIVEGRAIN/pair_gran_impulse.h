@@ -45,8 +45,8 @@ class PairGranImpulse : public Pair {
   double memory_usage() override;
 
   // Global outputs, pvector (compute pair gran/impulse, which sums them over ranks: a maximum is
-  // held by rank 0, the other ranks hold 0). New outputs (e.g. energy input and dissipation) are
-  // appended before NUM_OUTPUTS; existing indices never change.
+  // held by rank 0, the other ranks hold 0; a sum is each rank's part). New outputs are appended
+  // before NUM_OUTPUTS; existing indices never change.
   enum Output {
     CONTACTS = 0,       // contacts solved in the last step, all ranks
     SUBSTEPS,           // most sub-steps a compliant impact needed in the last step
