@@ -630,18 +630,18 @@ void PairGranImpulse::compute(int eflag, int vflag)
   move_late_atoms();
   if (vflag_atom)
     for (int i = 0; i < atom->nlocal; i++)
-      for (int k = 0; k < 6; k++) vatom[i][k] += contact_sums[i][VIRIAL + k];
+      for (int k = 0; k < NUM_VIRIAL; k++) vatom[i][k] += contact_sums[i][VIRIAL + k];
 }
 
 // Energies of the step's solve (Output, and per surface to the wall fixes). The bodies' kinetic
 // energy (translation and rotation) changes by exactly the sum over contacts of J . (u_before +
 // u_after) / 2, u the relative velocity at the contact, plus J . v_wall at wall contacts. The law
-// sees u plus the contact's gain (gravity, the plate's acceleration until the contact closes), and
-// so does this count: a contact loses J . (u + gain) averaged (an impact alone: (1 - e^2) of its
-// energy of approach), a wall works with its velocity when the contact closes. What is left of
-// the kinetic energy change is gravity's part of the gain, J . g (dt/2 + t_c), negligible. A contact whose
-// overlap correction made it leave at its minimum separation velocity s, faster than
-// restitution would (e times its approach a), is credited 1/2 m (s^2 - (e a)^2) to the
+// sees u plus the contact's gain (gravity, the plate's acceleration until the contact closes),
+// and so does this count: a contact loses J . (u + gain) averaged (an impact alone: (1 - e^2) of
+// its energy of approach), a wall works with its velocity when the contact closes. Left out of
+// the kinetic energy change: gravity's part of the gain, J . g (dt/2 + t_c), negligible. A
+// contact whose overlap correction made it leave at its minimum separation velocity s, faster
+// than restitution would (e times its approach a), is credited 1/2 m (s^2 - (e a)^2) to the
 // correction (m = 1 / n.K.n, the contact's effective mass: exact for a frictionless contact
 // alone); the rest is dissipation. Each contact is counted on the rank that solved it.
 void PairGranImpulse::tally_energy()
@@ -692,16 +692,16 @@ void PairGranImpulse::tally_virial()
       continue;
     }
     const Vec3 d = Vec3(x[ac.atom2]) - Vec3(x[ac.atom1]);
-    const double v[6] = {d.x * force.x, d.y * force.y, d.z * force.z,
-                         d.x * force.y, d.x * force.z, d.y * force.z};
+    const double v[NUM_VIRIAL] = {d.x * force.x, d.y * force.y, d.z * force.z,
+                                  d.x * force.y, d.x * force.z, d.y * force.z};
     if (vflag_global)
-      for (int k = 0; k < 6; k++) virial[k] += v[k];
+      for (int k = 0; k < NUM_VIRIAL; k++) virial[k] += v[k];
     if (vflag_atom)
       for (int i : {ac.atom1, ac.atom2})
-        for (int k = 0; k < 6; k++) contact_sums[i][VIRIAL + k] += 0.5 * v[k];
+        for (int k = 0; k < NUM_VIRIAL; k++) contact_sums[i][VIRIAL + k] += 0.5 * v[k];
   }
   if (vflag_global) {
-    std::copy(virial, virial + 6, last_virial);
+    std::copy(virial, virial + NUM_VIRIAL, last_virial);
     last_virial_step = update->ntimestep;
   }
 }
@@ -709,7 +709,8 @@ void PairGranImpulse::tally_virial()
 // At a run's setup: the global virial of the step it continues from, if this style solved it.
 void PairGranImpulse::restore_virial()
 {
-  if (vflag_global && last_virial_step == update->ntimestep) std::copy(last_virial, last_virial + 6, virial);
+  if (vflag_global && last_virial_step == update->ntimestep)
+    std::copy(last_virial, last_virial + NUM_VIRIAL, virial);
 }
 
 int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)

@@ -159,6 +159,8 @@ class PairGranImpulse : public Pair {
   // and the late impulse and its moment about the atom (each impulse times the time after the
   // step's start at which its contact closed: the atom then moves that impulse / mass less).
   // With per-atom virial (compute stress/atom), also each atom's share of its contacts' virial.
+  // (A virial has NUM_VIRIAL components, in LAMMPS's order xx, yy, zz, xy, xz, yz.)
+  static constexpr int NUM_VIRIAL = 6;
   enum ContactColumn { FORCE = 0, TORQUE = 3, LATE = 6, LATE_ANGULAR = 9, VIRIAL = 12, NUM_CONTACT_COLUMNS = 18 };
   int nmax;
   int reverse_columns;    // columns that travel in this step's reverse comm (VIRIAL or all)
@@ -170,7 +172,7 @@ class PairGranImpulse : public Pair {
   double wall_speed;    // largest speed of a wall in this step (for the skin warning)
   // Global virial of the last step's contacts, and that step: a run that continues from it
   // shows it at its setup, as it shows that step's pending force.
-  double last_virial[6];
+  double last_virial[NUM_VIRIAL];
   bigint last_virial_step;
   bool skin_warned;    // the skin warning is given once per run
 
