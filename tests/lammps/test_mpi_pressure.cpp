@@ -4,6 +4,7 @@
 // centre-to-centre vector; a wall: from the contact point to the atom's centre) then follows from
 // the loads alone.
 #include "bead_box.h"
+#include "rod_deck.h"
 
 #include "domain.h"
 #include "force.h"
@@ -17,6 +18,15 @@ constexpr double RADIUS = 0.5e-3;
 constexpr double DT = 1e-5;
 constexpr int SETTLE = 2000;    // a multiple of WINDOW: fix ave/time averages whole windows
 constexpr int WINDOW = 2000;
+void report(const std::string &what, double measured, double expected)
+{
+  int me = 0, nprocs = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
+  if (me == 0)
+    std::printf("[ measured ] %s, %d ranks: %.6g (statics %.6g, relative error %.2g)\n", what.c_str(), nprocs,
+                measured, expected, measured / expected - 1.0);
+}
 }    // namespace
 
 class StaticPressure : public BeadBox {
@@ -31,15 +41,6 @@ class StaticPressure : public BeadBox {
   double volume() { return lmp->domain->xprd * lmp->domain->yprd * lmp->domain->zprd; }
   // Virial (energy units) from a pressure component of compute pressure (pressure units).
   double virial_of(const std::string &pressure) { return value(pressure) * volume() / lmp->force->nktv2p; }
-  void report(const std::string &what, double measured, double expected)
-  {
-    int me = 0, nprocs = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &me);
-    MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-    if (me == 0)
-      std::printf("[ measured ] %s, %d ranks: %.6g (statics %.6g, relative error %.2g)\n", what.c_str(), nprocs,
-                  measured, expected, measured / expected - 1.0);
-  }
   // Settle, then average over WINDOW steps the given quantities (fix ave/time "av").
   void settle_and_average(const std::string &quantities)
   {
@@ -147,4 +148,46 @@ TEST_F(RodPackingStress, PerAtomVirialSumsToTheGlobalOne)
                 1e-9 * scale * volume)
         << "component " << k;
   }
+}
+
+class RodPressure : public LammpsTest {};
+
+// One paper rod (fix rigid/rod) lying flat on a still plate at z = 0 under gravity, across the
+// sub-domain corner of 2 and 4 ranks (its plate contacts are solved on one rank, from ghost
+// atoms of the others). The virial that compute pressure sums is the plate's (fix_modify virial
+// yes: each contact's force times the arm from the contact point to its sphere's centre) and fix
+// rigid/rod's, whose constraint forces hold the spheres in the body (as fix rigid/small tallies
+// them, f_c = m a - f on each sphere). At rest f_c = -(plate + gravity) on each sphere, so the
+// sum is W_zz = g sum_i m_i z_i, the spheres' weights at their heights above the plate. (For
+// this rod the plate's part alone already gives it: the spheres' heights are linear along the
+// rod, as the plate's load is, and the rigid part averages to zero by the torque balance.) A
+// contact tallied on two ranks, or a rigid part that does not vanish at rest, fails.
+TEST_F(RodPressure, RodRestingOnAPlate)
+{
+  using namespace rod_deck;
+  command("units si\natom_style sphere\natom_modify map array\nboundary p p f\n"
+          "fix molecule_ids all property/atom mol ghost yes\n"
+          "region box block -6e-3 6e-3 -6e-3 6e-3 -1e-3 3e-3\ncreate_box 4 box\n"
+          "comm_modify vel yes cutoff 6e-3\nneighbor 5e-4 bin\n" +
+          rod_template("test_mpi_pressure_rod.mol") + flat_rod(0.0) +
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\nfix rods all rigid/rod molecule mol rod\n"
+          "fix plates all wall/impulse zlo 0.0 e 0.3 mu 0.2\nfix_modify plates virial yes\n"
+          "fix gravity all gravity 9.81 vector 0 0 -1\ntimestep 1e-5\n"
+          "compute all_virial all pressure NULL virial\n"
+          "thermo 0\nrun 2000 post no\n"
+          "fix av all ave/time 1 2000 2000 c_all_virial[3] f_plates[6]\n"
+          "run 2000 post no");
+  const double volume = lmp->domain->xprd * lmp->domain->yprd * lmp->domain->zprd / lmp->force->nktv2p;
+  const double weight = G * value("mass(all)");
+  const double expected = weight * value("xcm(all,z)");
+  const double total = value("f_av[1]") * volume, force = value("f_av[2]") / DT;
+  // The plate's part alone: the same window again without fix rigid/rod's virial.
+  command("fix_modify rods virial no\nrun 2000 post no");
+  const double plate = value("f_av[1]") * volume;
+  report("rod on a plate: plate force", force, weight);
+  report("rod on a plate: virial zz, plate + rigid/rod", total, expected);
+  report("rod on a plate: virial zz, plate alone", plate, expected);
+  EXPECT_NEAR(force, weight, 1e-3 * weight);
+  EXPECT_NEAR(total, expected, 1e-2 * expected);
+  EXPECT_NEAR(plate, expected, 1e-2 * expected);
 }
