@@ -43,7 +43,7 @@ static constexpr double IMPACT_FRACTION = 0.01;
 /* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
        [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), ImpulseWall(NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
+    Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
     lid(Lid::NONE), rough_slope(0.0), rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
@@ -105,6 +105,9 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
+  // fix_modify virial yes: the virial of the plates' contact forces (global, as pair
+  // gran/impulse tallies them; off by default as for fix wall/gran).
+  virial_global_flag = 1;
 }
 
 int FixWallImpulse::setmask()
@@ -190,6 +193,7 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   const double peak_speed = MY_2PI * frequency * amplitude;
   clear_delivered(std::fmod(MY_2PI * frequency * t + phase, MY_2PI),
                   peak_speed > 0.0 ? IMPACT_FRACTION * peak_speed : -1.0);
+  note_wall_speed(std::fabs(vb));
 
   double **x = atom->x;
   double *radius = atom->radius;

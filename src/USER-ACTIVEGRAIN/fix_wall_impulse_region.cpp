@@ -24,7 +24,7 @@ static const char *const STYLE = "Fix wall/impulse/region";
 
 /* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
 FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), ImpulseWall(1), region(nullptr), materials(lmp, STYLE), motion_reset(false)
+    Fix(lmp, narg, arg), ImpulseWall(this, 1), region(nullptr), materials(lmp, STYLE), motion_reset(false)
 {
   if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
   region_id = arg[3];
@@ -45,6 +45,7 @@ FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
   size_vector = num_surface_outputs();
   global_freq = 1;
   extvector = 0;
+  virial_global_flag = 1;    // fix_modify virial yes: the virial of the wall's contact forces
 }
 
 int FixWallImpulseRegion::setmask()
@@ -112,6 +113,7 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
       const Vec3 n = Vec3(rc.delx, rc.dely, rc.delz) / rc.r;    // from the wall to the atom
       Vec3 wall_velocity;    // (its acceleration is not known: taken as 0)
       if (moving) region->velocity_contact(&wall_velocity.x, xbox, ic);
+      note_wall_speed(norm(wall_velocity));
       contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], rc.r - radius[i], wall_velocity,
                           Vec3(), materials.of_type(type[i])});
     }

@@ -23,8 +23,11 @@ void ImpulseWall::clear_delivered(double drive_phase, double impact_speed)
 {
   std::fill(delivered_.begin(), delivered_.end(), ActiveGrain::Vec3());
   std::fill(impacts_.begin(), impacts_.end(), ActiveGrain::Vec3());
+  std::fill(energy_.begin(), energy_.end(), ActiveGrain::Vec3());
+  std::fill(fix_->virial, fix_->virial + 6, 0.0);
   drive_phase_ = drive_phase;
   impact_speed_ = impact_speed;
+  wall_speed_ = 0.0;
 }
 
 void ImpulseWall::add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J, double approach)
@@ -32,6 +35,23 @@ void ImpulseWall::add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J,
   delivered_[surface] += J;
   if (impact_speed_ >= 0.0 && approach > impact_speed_)
     impacts_[surface] += ActiveGrain::Vec3(1.0, std::cos(drive_phase_), std::sin(drive_phase_));
+}
+
+void ImpulseWall::add_energy(int surface, double work, double dissipated, double overlap)
+{
+  energy_[surface] += ActiveGrain::Vec3(work, dissipated, overlap);
+}
+
+void ImpulseWall::add_virial(const ActiveGrain::Vec3 &arm, const ActiveGrain::Vec3 &force)
+{
+  if (!fix_->thermo_virial) return;
+  double *virial = fix_->virial;
+  virial[0] += arm.x * force.x;
+  virial[1] += arm.y * force.y;
+  virial[2] += arm.z * force.z;
+  virial[3] += arm.x * force.y;
+  virial[4] += arm.x * force.z;
+  virial[5] += arm.y * force.z;
 }
 
 double ImpulseWall::surface_output(MPI_Comm world, int k) const
@@ -44,6 +64,7 @@ double ImpulseWall::surface_output(MPI_Comm world, int k) const
   switch (static_cast<SurfaceQuantity>(quantity)) {
     case IMPULSE: mine = (&delivered_[surface].x)[component]; break;
     case IMPACTS: mine = (&impacts_[surface].x)[component]; break;
+    case ENERGY: mine = (&energy_[surface].x)[component]; break;
     case NUM_SURFACE_QUANTITIES: break;
   }
   MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "ag_impulse.h"
-#include "pointers.h"
+#include "fix.h"
 
 #include <algorithm>
 #include <mpi.h>
@@ -38,6 +38,15 @@ class ImpulseWall {
   // that approached at speed approach (> 0) before the solve: an impact, if faster than the
   // wall's impact threshold, is tallied at the wall's drive phase.
   void add_delivered_impulse(int surface, const ActiveGrain::Vec3 &J, double approach);
+  // Energies of a contact through a surface in this force computation (ENERGY): the wall's work
+  // J . v_wall, the energy dissipated and the energy the overlap correction added.
+  void add_energy(int surface, double work, double dissipated, double overlap);
+  // Virial of a contact force (fix_modify virial yes): arm from the contact point to the atom's
+  // centre, times the force on the atom (as fix wall/region tallies it). Global only.
+  void add_virial(const ActiveGrain::Vec3 &arm, const ActiveGrain::Vec3 &force);
+  // Largest speed of the wall at the atoms it looked at in this force computation (for the
+  // pair style's skin warning: a wall closes gaps at its own speed).
+  double wall_speed() const { return wall_speed_; }
 
   // Global outputs of the wall fixes (compute_vector), one layout for both: first the fix's own
   // state (fix wall/impulse: base z, lid z, plate velocity; fix wall/impulse/region: none), then
@@ -48,24 +57,36 @@ class ImpulseWall {
   //            impulse), and the sums of cos and sin of the drive phase at them (the lock-in
   //            order parameter R = |<exp(i phase)>| over any window is |sums| / impacts, each
   //            summed over the window, e.g. with fix ave/time).
-  // A quantity added later (energy input, dissipation) goes after the last one: the indices of
-  // the existing ones never change.
-  enum SurfaceQuantity { IMPULSE = 0, IMPACTS, NUM_SURFACE_QUANTITIES };
-  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3, 3};
+  //   ENERGY   the work the surface did on the atoms (sum of J . v_wall over its contacts), the
+  //            energy dissipated at its contacts, and the energy the overlap correction added at
+  //            them (docs/pair_gran_impulse.rst: energy balance).
+  // A quantity added later goes after the last one: the indices of the existing ones never
+  // change.
+  enum SurfaceQuantity { IMPULSE = 0, IMPACTS, ENERGY, NUM_SURFACE_QUANTITIES };
+  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3, 3, 3};
 
  protected:
-  explicit ImpulseWall(int nsurfaces) : delivered_(nsurfaces), impacts_(nsurfaces) {}
+  // fix: the wall fix itself, whose virial (fix_modify virial yes) the contacts are tallied into.
+  ImpulseWall(class Fix *fix, int nsurfaces) :
+      fix_(fix), delivered_(nsurfaces), impacts_(nsurfaces), energy_(nsurfaces)
+  {
+    std::fill(fix->virial, fix->virial + 6, 0.0);
+  }
   int num_surface_outputs() const;
   // Start a force computation's tally. A wall with a drive gives its phase (radians) and the
   // approach speed above which a contact is an impact; without one, no impacts are tallied.
+  // Also clears the energies, the virial and the wall speed.
   void clear_delivered(double drive_phase = 0.0, double impact_speed = -1.0);
+  void note_wall_speed(double speed) { wall_speed_ = std::max(wall_speed_, speed); }
   // Output k of the per-surface blocks (k counts from the first block), summed over ranks.
   double surface_output(MPI_Comm world, int k) const;
 
  private:
+  class Fix *fix_;
   std::vector<ActiveGrain::Vec3> delivered_;    // this rank's impulse per surface, last force computation
   std::vector<ActiveGrain::Vec3> impacts_;      // ... impacts, sum cos, sum sin of the drive phase
-  double drive_phase_ = 0.0, impact_speed_ = -1.0;
+  std::vector<ActiveGrain::Vec3> energy_;       // ... work, dissipated, overlap correction
+  double drive_phase_ = 0.0, impact_speed_ = -1.0, wall_speed_ = 0.0;
 };
 
 // Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then

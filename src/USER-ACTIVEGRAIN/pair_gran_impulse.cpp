@@ -47,8 +47,9 @@ static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), freeze_groupbit(0), pending(nullptr), force_dt(0.0),
-    ghost_pairs(false), ranks(lmp), nmax(0), contact_sums(nullptr), fastest(0.0),
-    radius_excess(0.0), skin_warned(false), largest_overlap(0.0),
+    ghost_pairs(false), ranks(lmp), nmax(0), reverse_columns(NUM_CONTACT_COLUMNS), contact_sums(nullptr),
+    fastest(0.0), radius_excess(0.0), wall_speed(0.0), last_virial{}, last_virial_step(-1),
+    skin_warned(false), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
@@ -56,7 +57,7 @@ PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
   finitecutflag = 1;
   comm_reverse = NUM_CONTACT_COLUMNS;
   // Contact forces reach owners through this style's own reverse communication, so the f.r
-  // virial over owned and ghost atoms would be wrong: no virial from this style.
+  // virial over owned and ghost atoms would be wrong: the virial is tallied per contact.
   no_virial_fdotr_compute = 1;
   nextra = NUM_OUTPUTS;
   pvector = new double[NUM_OUTPUTS]();
@@ -270,7 +271,7 @@ void PairGranImpulse::grow_buffers()
   atom_body.assign(nall, -1);
   spin_speed.resize(nall);
   for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
-  fastest = radius_excess = 0.0;
+  fastest = radius_excess = wall_speed = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     fastest = std::max(fastest, norm(Vec3(atom->v[i])) + spin_speed[i]);
     radius_excess = std::max(radius_excess, atom->radius[i] - maxrad[atom->type[i]]);
@@ -360,6 +361,8 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
   AtomContact located = atoms;
   located.approach = std::max(0.0, -dot(u + gain, n));
   located.time_to_contact = time_to_contact;
+  located.velocity_before = u;
+  located.wall_velocity = solver.body(body1).v + wall_acceleration * time_to_contact;
   found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, min_separation, gain, located});
   largest_overlap = std::max(largest_overlap, -gap);
 }
@@ -433,6 +436,7 @@ void PairGranImpulse::gather_wall_contacts()
   for (ImpulseWall *wall : walls) {
     wall_scratch.clear();
     wall->find_wall_contacts(reach, ranks.solved_atoms(), wall_scratch);
+    wall_speed = std::max(wall_speed, wall->wall_speed());
     for (const ImpulseWall::Contact &c : wall_scratch) {
       if (!may_close(c.atom, -1, c.wall_velocity, c.gap)) continue;
       const int b = body_of_atom(c.atom);
@@ -530,9 +534,9 @@ void PairGranImpulse::restore_pending_forces()
 // Solver health into pvector (see Output), and a warning when impacts keep hitting the cap.
 void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &result)
 {
-  enum Reduced { R_SUBSTEPS, R_SHORTFALL, R_OVERLAP, R_CAPPED, R_FASTEST, R_RADIUS, NUM_REDUCED };
+  enum Reduced { R_SUBSTEPS, R_SHORTFALL, R_OVERLAP, R_CAPPED, R_FASTEST, R_WALL_SPEED, R_RADIUS, NUM_REDUCED };
   double mine[NUM_REDUCED] = {(double) result.substeps, result.shortfall, largest_overlap,
-                              result.converged ? 0.0 : 1.0, fastest, radius_excess};
+                              result.converged ? 0.0 : 1.0, fastest, wall_speed, radius_excess};
   double all[NUM_REDUCED];
   if (comm->nprocs > 1) MPI_Allreduce(mine, all, NUM_REDUCED, MPI_DOUBLE, MPI_MAX, world);
   else std::copy(mine, mine + NUM_REDUCED, all);
@@ -544,12 +548,22 @@ void PairGranImpulse::record_solve(const ActiveGrain::ContactSolver::Result &res
                "fix deposit, or between runs", STYLE, all[R_RADIUS]);
   // LAMMPS rebuilds neighbor lists after an atom moved half the skin: a pair that closes more
   // than the other half in one step can be missing from the list when it is about to touch.
-  const double closing = 2.0 * all[R_FASTEST] * update->dt;
-  if (!skin_warned && closing > 0.5 * neighbor->skin) {
-    if (comm->me == 0)
-      error->warning(FLERR, "{}: two particles can close {:.3g} in one step (2 x largest |v| + "
-                     "|omega| r, times dt), more than half the neighbor skin {:.3g}: contacts can be "
-                     "missed; use a larger skin or a smaller time step", STYLE, closing, neighbor->skin);
+  // Walls are searched up to the skin from each atom: a vibrating plate closes a gap at its own
+  // speed plus the particle's, held to the same margin.
+  const double pair_closing = 2.0 * all[R_FASTEST] * update->dt;
+  const double wall_closing = (all[R_FASTEST] + all[R_WALL_SPEED]) * update->dt;
+  if (!skin_warned && std::max(pair_closing, wall_closing) > 0.5 * neighbor->skin) {
+    if (comm->me == 0) {
+      if (pair_closing >= wall_closing)
+        error->warning(FLERR, "{}: two particles can close {:.3g} in one step (2 x largest |v| + "
+                       "|omega| r, times dt), more than half the neighbor skin {:.3g}: contacts can be "
+                       "missed; use a larger skin or a smaller time step", STYLE, pair_closing, neighbor->skin);
+      else
+        error->warning(FLERR, "{}: a particle and a wall can close {:.3g} in one step (largest |v| + "
+                       "|omega| r plus the wall speed {:.3g}, times dt), more than half the neighbor "
+                       "skin {:.3g}: contacts can be missed; use a larger skin or a smaller time step",
+                       STYLE, wall_closing, all[R_WALL_SPEED], neighbor->skin);
+    }
     skin_warned = true;
   }
 
@@ -579,6 +593,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
     // continues from (if any) comes back, so that its initial_integrate completes the impulse.
     restore_pending_forces();
     apply_contact_forces(false);
+    restore_virial();
     largest_overlap = 0.0;
     skin_warned = false;
     capped_steps = 0;
@@ -607,16 +622,102 @@ void PairGranImpulse::compute(int eflag, int vflag)
   add_found_contacts();
   record_solve(solver.solve(solver_settings));
   distribute_impulses();
+  tally_energy();
+  tally_virial();
+  reverse_columns = vflag_atom ? NUM_CONTACT_COLUMNS : VIRIAL;
   comm->reverse_comm(this);
   apply_contact_forces(true);
   move_late_atoms();
+  if (vflag_atom)
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < NUM_VIRIAL; k++) vatom[i][k] += contact_sums[i][VIRIAL + k];
+}
+
+// Energies of the step's solve (Output, and per surface to the wall fixes). The bodies' kinetic
+// energy (translation and rotation) changes by exactly the sum over contacts of J . (u_before +
+// u_after) / 2, u the relative velocity at the contact, plus J . v_wall at wall contacts. The law
+// sees u plus the contact's gain (gravity, the plate's acceleration until the contact closes),
+// and so does this count: a contact loses J . (u + gain) averaged (an impact alone: (1 - e^2) of
+// its energy of approach), a wall works with its velocity when the contact closes. Left out of
+// the kinetic energy change: gravity's part of the gain, J . g (dt/2 + t_c), negligible. A
+// contact whose overlap correction made it leave at its minimum separation velocity s, faster
+// than restitution would (e times its approach a), is credited 1/2 m (s^2 - (e a)^2) to the
+// correction (m = 1 / n.K.n, the contact's effective mass: exact for a frictionless contact
+// alone); the rest is dissipation. Each contact is counted on the rank that solved it.
+void PairGranImpulse::tally_energy()
+{
+  double dissipated_pair = 0.0, dissipated_wall = 0.0, overlap = 0.0, wall_work = 0.0;
+  for (int c = 0; c < solver.num_contacts(); c++) {
+    const ActiveGrain::ContactSolver::Contact &contact = solver.contact(c);
+    const AtomContact &ac = atom_contacts[c];
+    const RigidBodyState &body1 = solver.body(contact.body1), &body2 = solver.body(contact.body2);
+    const Vec3 after = body2.velocity_at_arm(contact.r2) - body1.velocity_at_arm(contact.r1);
+    const double change = dot(contact.impulse, (ac.velocity_before + after) * 0.5 + contact.gain);
+    const double restituted = contact.material.e * ac.approach;
+    double push = 0.0;
+    if (contact.min_separation > restituted)
+      push = 0.5 * (contact.min_separation * contact.min_separation - restituted * restituted) /
+          dot(contact.n, contact.K * contact.n);
+    const double lost = push - change;
+    overlap += push;
+    if (ac.atom1 >= 0) {
+      dissipated_pair += lost;
+    } else {
+      const double work = dot(contact.impulse, ac.wall_velocity);
+      wall_work += work;
+      dissipated_wall += lost;
+      ac.wall->add_energy(ac.surface, work, lost, push);
+    }
+  }
+  pvector[DISSIPATED_PAIR] = dissipated_pair;
+  pvector[DISSIPATED_WALL] = dissipated_wall;
+  pvector[OVERLAP_WORK] = overlap;
+  pvector[WALL_WORK] = wall_work;
+}
+
+// The virial of the step's contact forces J / dt, as GRANULAR tallies its forces: for a pair,
+// the centre-to-centre vector times the force (half of it to each atom's per-atom virial); for a
+// wall contact, the arm from the contact point to the atom's centre times the force, to the wall
+// fix (fix_modify virial yes; as fix wall/region tallies it). Each contact once, on the rank that
+// solved it; per-atom shares of ghost atoms reach their owners with the contact forces.
+void PairGranImpulse::tally_virial()
+{
+  const double to_force = 1.0 / update->dt;
+  double **x = atom->x;
+  for (int c = 0; c < solver.num_contacts(); c++) {
+    const AtomContact &ac = atom_contacts[c];
+    const Vec3 force = solver.impulse(c) * to_force;    // on atom2
+    if (ac.atom1 < 0) {
+      ac.wall->add_virial(Vec3(x[ac.atom2]) - ac.point, force);
+      continue;
+    }
+    const Vec3 d = Vec3(x[ac.atom2]) - Vec3(x[ac.atom1]);
+    const double v[NUM_VIRIAL] = {d.x * force.x, d.y * force.y, d.z * force.z,
+                                  d.x * force.y, d.x * force.z, d.y * force.z};
+    if (vflag_global)
+      for (int k = 0; k < NUM_VIRIAL; k++) virial[k] += v[k];
+    if (vflag_atom)
+      for (int i : {ac.atom1, ac.atom2})
+        for (int k = 0; k < NUM_VIRIAL; k++) contact_sums[i][VIRIAL + k] += 0.5 * v[k];
+  }
+  if (vflag_global) {
+    std::copy(virial, virial + NUM_VIRIAL, last_virial);
+    last_virial_step = update->ntimestep;
+  }
+}
+
+// At a run's setup: the global virial of the step it continues from, if this style solved it.
+void PairGranImpulse::restore_virial()
+{
+  if (vflag_global && last_virial_step == update->ntimestep)
+    std::copy(last_virial, last_virial + NUM_VIRIAL, virial);
 }
 
 int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++)
-    for (int k = 0; k < NUM_CONTACT_COLUMNS; k++) buf[m++] = contact_sums[i][k];
+    for (int k = 0; k < reverse_columns; k++) buf[m++] = contact_sums[i][k];
   return m;
 }
 
@@ -625,7 +726,7 @@ void PairGranImpulse::unpack_reverse_comm(int n, int *list, double *buf)
   int m = 0;
   for (int i = 0; i < n; i++) {
     const int j = list[i];
-    for (int k = 0; k < NUM_CONTACT_COLUMNS; k++) contact_sums[j][k] += buf[m++];
+    for (int k = 0; k < reverse_columns; k++) contact_sums[j][k] += buf[m++];
   }
 }
 

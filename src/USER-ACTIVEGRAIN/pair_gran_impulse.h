@@ -45,8 +45,8 @@ class PairGranImpulse : public Pair {
   double memory_usage() override;
 
   // Global outputs, pvector (compute pair gran/impulse, which sums them over ranks: a maximum is
-  // held by rank 0, the other ranks hold 0). New outputs (e.g. energy input and dissipation) are
-  // appended before NUM_OUTPUTS; existing indices never change.
+  // held by rank 0, the other ranks hold 0; a sum is each rank's part). New outputs are appended
+  // before NUM_OUTPUTS; existing indices never change.
   enum Output {
     CONTACTS = 0,       // contacts solved in the last step, all ranks
     SUBSTEPS,           // most sub-steps a compliant impact needed in the last step
@@ -54,6 +54,12 @@ class PairGranImpulse : public Pair {
                         // step, relative to its minimum separation velocity
     LARGEST_OVERLAP,    // largest overlap of a contact since the run's setup (length)
     CAPPED_STEPS,       // steps since the run's setup in which an impact hit the sub-step cap
+    // Energies of the last step's solve (energy units), each contact counted on the rank that
+    // solved it (docs/pair_gran_impulse.rst: energy balance):
+    DISSIPATED_PAIR,    // dissipated at particle-particle contacts
+    DISSIPATED_WALL,    // dissipated at wall contacts
+    OVERLAP_WORK,       // added by the overlap correction (pushes apart of overlapping contacts)
+    WALL_WORK,          // work of the walls on the particles, sum of J . v_wall
     NUM_OUTPUTS
   };
   // Order in which contacts are visited: a hash of the step and the contact's identity (default),
@@ -70,6 +76,8 @@ class PairGranImpulse : public Pair {
     ActiveGrain::Vec3 point;
     double approach;           // normal approach speed before the solve (>= 0)
     double time_to_contact;    // after the step's start at which the gap closes (0: overlap)
+    ActiveGrain::Vec3 velocity_before;    // relative velocity at the contact before the solve
+    ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes
   };
   // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
   using ContactIdentity = std::tuple<int, int, tagint, tagint>;
@@ -111,6 +119,9 @@ class PairGranImpulse : public Pair {
   void move_late_atoms();
   void restore_pending_forces();
   void record_solve(const ActiveGrain::ContactSolver::Result &result);
+  void tally_energy();
+  void tally_virial();
+  void restore_virial();
 
   // settings
   ActiveGrain::ContactSolver::Settings solver_settings;
@@ -147,13 +158,22 @@ class PairGranImpulse : public Pair {
   // Per owned and ghost atom, summed onto owners by reverse comm: the contact force and torque,
   // and the late impulse and its moment about the atom (each impulse times the time after the
   // step's start at which its contact closed: the atom then moves that impulse / mass less).
-  enum ContactColumn { FORCE = 0, TORQUE = 3, LATE = 6, LATE_ANGULAR = 9, NUM_CONTACT_COLUMNS = 12 };
+  // With per-atom virial (compute stress/atom), also each atom's share of its contacts' virial.
+  // (A virial has NUM_VIRIAL components, in LAMMPS's order xx, yy, zz, xy, xz, yz.)
+  static constexpr int NUM_VIRIAL = 6;
+  enum ContactColumn { FORCE = 0, TORQUE = 3, LATE = 6, LATE_ANGULAR = 9, VIRIAL = 12, NUM_CONTACT_COLUMNS = 18 };
   int nmax;
+  int reverse_columns;    // columns that travel in this step's reverse comm (VIRIAL or all)
   double **contact_sums;
 
   // This rank's atoms in this step: largest |v| + |omega| r (for the skin warning), and largest
   // excess of a radius over its type's neighbor-cutoff radius (an atom inserted by another means).
   double fastest, radius_excess;
+  double wall_speed;    // largest speed of a wall in this step (for the skin warning)
+  // Global virial of the last step's contacts, and that step: a run that continues from it
+  // shows it at its setup, as it shows that step's pending force.
+  double last_virial[NUM_VIRIAL];
+  bigint last_virial_step;
   bool skin_warned;    // the skin warning is given once per run
 
   // This rank's solve of the last step, and since the run's setup (reduced into pvector).

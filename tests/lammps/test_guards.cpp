@@ -152,6 +152,24 @@ TEST_F(Guards, SkinSmallerThanAStepsClosingDistanceWarnsOncePerRun)
   EXPECT_EQ(warnings(), before + 1);
 }
 
+TEST_F(Guards, PlateSpeedCountsInTheSkinWarning)
+{
+  // A bead at rest 1 mm above a base plate vibrating at 2000 Hz, from phase 0 (its top speed
+  // A 2 pi f). Skin 0.2 mm: amplitude 1 mm gives 12.6 m/s, 0.126 mm per step, more than half
+  // the skin: a warning although no particle moves; 0.5 mm gives at most 6.3 m/s, 0.063 mm per
+  // step (no warning). 5 steps each: the plate does not reach the bead.
+  bead(0.005, 0.005, 0.0015, 0, 0, 0);
+  command("fix nve all nve/sphere\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 1e-3 2000 0");
+  int before = warnings();
+  command("run 5 post no");
+  EXPECT_EQ(warnings(), before + 1);
+  EXPECT_EQ(value("vz[1]"), 0.0);    // only the plate moved
+  command("unfix plates\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 5e-4 2000 0");
+  before = warnings();
+  command("run 5 post no");
+  EXPECT_EQ(warnings(), before);
+}
+
 TEST_F(Guards, ParticlesThatDoNotFitAreRefused)
 {
   // Plates 0.1 mm apart for 1 mm beads.
