@@ -33,6 +33,16 @@ inline Vec3 cross(const Vec3 &a, const Vec3 &b)
 }
 inline double norm2(const Vec3 &a) { return dot(a, a); }
 inline double norm(const Vec3 &a) { return std::sqrt(dot(a, a)); }
+// Adds scale times the outer product a (x) b to a virial v, in LAMMPS's order xx, yy, zz, xy, xz, yz.
+inline void add_outer_product(double *v, const Vec3 &a, const Vec3 &b, double scale = 1.0)
+{
+  v[0] += scale * a.x * b.x;
+  v[1] += scale * a.y * b.y;
+  v[2] += scale * a.z * b.z;
+  v[3] += scale * a.x * b.y;
+  v[4] += scale * a.x * b.z;
+  v[5] += scale * a.y * b.z;
+}
 
 // Row-major 3x3 matrix.
 struct Mat3 {

@@ -44,14 +44,7 @@ void ImpulseWall::add_energy(int surface, double work, double dissipated, double
 
 void ImpulseWall::add_virial(const ActiveGrain::Vec3 &arm, const ActiveGrain::Vec3 &force)
 {
-  if (!fix_->thermo_virial) return;
-  double *virial = fix_->virial;
-  virial[0] += arm.x * force.x;
-  virial[1] += arm.y * force.y;
-  virial[2] += arm.z * force.z;
-  virial[3] += arm.x * force.y;
-  virial[4] += arm.x * force.z;
-  virial[5] += arm.y * force.z;
+  if (fix_->thermo_virial) ActiveGrain::add_outer_product(fix_->virial, arm, force);
 }
 
 double ImpulseWall::surface_output(MPI_Comm world, int k) const

@@ -692,13 +692,9 @@ void PairGranImpulse::tally_virial()
       continue;
     }
     const Vec3 d = Vec3(x[ac.atom2]) - Vec3(x[ac.atom1]);
-    const double v[NUM_VIRIAL] = {d.x * force.x, d.y * force.y, d.z * force.z,
-                                  d.x * force.y, d.x * force.z, d.y * force.z};
-    if (vflag_global)
-      for (int k = 0; k < NUM_VIRIAL; k++) virial[k] += v[k];
+    if (vflag_global) ActiveGrain::add_outer_product(virial, d, force);
     if (vflag_atom)
-      for (int i : {ac.atom1, ac.atom2})
-        for (int k = 0; k < NUM_VIRIAL; k++) contact_sums[i][VIRIAL + k] += 0.5 * v[k];
+      for (int i : {ac.atom1, ac.atom2}) ActiveGrain::add_outer_product(contact_sums[i] + VIRIAL, d, force, 0.5);
   }
   if (vflag_global) {
     std::copy(virial, virial + NUM_VIRIAL, last_virial);
