@@ -98,6 +98,10 @@ constexpr int kOverlapSweeps = 100;
 // In a compliant impact, a contact approaches if faster than this fraction of the island's
 // largest pre-impact speed.
 constexpr double kRestingSpeed = 1.0e-12;
+// A compliant impact ends once no spring is loaded and no contact approaches faster than this
+// fraction of the island's fastest approach before it: the slow re-collisions of a dense
+// cluster's tail are left to the next time step, which finds them as contacts again.
+constexpr double kSettledApproach = 1.0e-2;
 // A loading spring is close to its turn when this many sub-steps of its present force would stop
 // its approach.
 constexpr double kTurnLookahead = 2.0;
@@ -226,6 +230,9 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   double speed = 0.0;
   for (const Vec3 &u : velocity_) speed = std::max(speed, norm(u));
   const double approaching = -kRestingSpeed * speed;
+  double settled = 0.0;
+  for (std::size_t k = 0; k < size; ++k)
+    settled = std::max(settled, -kSettledApproach * dot(velocity_[k], contacts_[island[k]].n));
   int substeps = 0;
   double previous_dtau = 0.0;    // the last drift: a kick spans half of it and half the next
   while (true) {
@@ -234,12 +241,14 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       body_stiffness_[c.body1] = body_stiffness_[c.body2] = 0.0;
       body_contacts_[c.body1] = body_contacts_[c.body2] = 0;
     }
-    bool engaged = false;
-    double to_contact = std::numeric_limits<double>::infinity();
+    bool engaged = false, any_loaded = false;
+    double to_contact = std::numeric_limits<double>::infinity(), fastest_approach = 0.0;
     for (std::size_t k = 0; k < size; ++k) {
       const Contact &c = contacts_[island[k]];
       const double un = dot(velocity_[k], c.n);
       const bool loaded = spring_force(c) > 0.0;
+      any_loaded = any_loaded || loaded;
+      fastest_approach = std::max(fastest_approach, -un);
       if (loaded || (un < approaching && c.compression >= spring_offset(c))) {
         engaged = true;
         const double stiffness = spring_stiffness(c);
@@ -251,6 +260,7 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
         to_contact = std::min(to_contact, (spring_offset(c) - c.compression) / -un);
       }
     }
+    if (!any_loaded && fastest_approach <= settled) return substeps;
     if (!engaged) {
       if (!std::isfinite(to_contact)) return substeps;    // all unloaded, none approaching
       for (std::size_t k = 0; k < size; ++k) {
