@@ -11,14 +11,17 @@
 // which returns e^2 of its compression work (Stronge's energetic restitution); its friction
 // is Stronge's (stick while the cone allows, else mu times the normal impulse against the
 // current slip). The impact is integrated in a fictitious time until every spring is unloaded
-// and no contact approaches. This is the Darboux-Keller multiple-impact model (Liu, Zhao &
-// Brogliato 2008) with linear springs of equal stiffness:
+// and no contact approaches faster than 1% of the island's fastest approach before it (slower
+// re-collisions, the long tail of a dense cluster, are found again at the next time step). This
+// is the Darboux-Keller multiple-impact model (Liu, Zhao & Brogliato 2008) with linear springs
+// of equal stiffness:
 //   - one contact alone gives exactly Stronge's impact (the same path in impulse space);
 //   - the result does not depend on the common stiffness (it only rescales the time), so the
 //     model adds no parameter; equal springs share a line contact's load as an elastic
 //     foundation does, linearly along the line, for any number of spheres;
 //   - every sub-step is a Jacobi step (all impulses from one state): the order of the contacts
-//     does not enter, only the sub-step size, which resolution sets;
+//     does not enter, only the sub-step size, which resolution sets; it shrinks to the stiff
+//     unloading's before a spring turns, so the rebound converges at second order;
 //   - springs with hysteresis and Coulomb friction never add energy.
 // Overlapping contacts must then open at least at their minimum separation velocity: pushes with
 // Stronge's friction, Jacobi again, after the impact (the overlap correction, the only energy
