@@ -48,7 +48,7 @@ TEST_F(RodRanksTest, RodsAcrossSubdomainBoundaries)
 
 // The same on rough plates (rms slope 0.01, correlation length 1 mm): the frozen surface is a
 // function of position and seed only, so every rank sees the same bumps. Rods wander, their
-// speeds scatter (s.d. ~0.5 mm/s) and the chaotic bouncing on the bumps decorrelates the 1-rank
+// speeds scatter (s.d. ~0.8 mm/s) and the chaotic bouncing on the bumps decorrelates the 1-rank
 // and the split runs within the 2 s (single rods 3-25% apart), so only the statistics can agree:
 // the mean of 16 rods, 4 per sub-domain boundary of 2 and 4 ranks, within three standard errors.
 TEST_F(RodRanksTest, RodsOnRoughPlatesAcrossSubdomainBoundaries)
