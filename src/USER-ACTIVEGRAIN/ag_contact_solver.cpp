@@ -166,14 +166,23 @@ void ContactSolver::solve_isolated()
     }
 }
 
+// The island's bodies, each once (island_bodies_).
+void ContactSolver::collect_bodies(const std::vector<int> &island)
+{
+  island_bodies_.clear();
+  for (int i : island)
+    for (int b : {contacts_[i].body1, contacts_[i].body2})
+      if (!in_island_[b]) {
+        in_island_[b] = 1;
+        island_bodies_.push_back(b);
+      }
+  for (int b : island_bodies_) in_island_[b] = 0;
+}
+
 // The impulses of one Jacobi step (step_impulse_, per island contact): summed per body first, so
-// that each body's inverse inertia is applied once.
+// that each body's inverse inertia is applied once. The sums are zero between calls.
 void ContactSolver::apply_all(const std::vector<int> &island)
 {
-  for (int i : island) {
-    const Contact &c = contacts_[i];
-    body_momentum_[c.body1] = body_angular_[c.body1] = body_momentum_[c.body2] = body_angular_[c.body2] = Vec3();
-  }
   for (std::size_t k = 0; k < island.size(); ++k) {
     Contact &c = contacts_[island[k]];
     const Vec3 &J = step_impulse_[k];
@@ -183,15 +192,13 @@ void ContactSolver::apply_all(const std::vector<int> &island)
     body_momentum_[c.body2] += J;
     body_angular_[c.body2] += cross(c.r2, J);
   }
-  for (int i : island) {
-    const Contact &c = contacts_[i];
-    for (int b : {c.body1, c.body2}) {
-      RigidBodyState &body = bodies_[b];
-      if (body.is_static() || norm2(body_momentum_[b]) + norm2(body_angular_[b]) == 0.0) continue;
+  for (int b : island_bodies_) {
+    RigidBodyState &body = bodies_[b];
+    if (!body.is_static()) {
       body.v += body_momentum_[b] * body.inv_mass;
       body.omega += body.inv_inertia * body_angular_[b];
-      body_momentum_[b] = body_angular_[b] = Vec3();    // applied: once per body
     }
+    body_momentum_[b] = body_angular_[b] = Vec3();
   }
 }
 
@@ -236,10 +243,9 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   int substeps = 0;
   double previous_dtau = 0.0;    // the last drift: a kick spans half of it and half the next
   while (true) {
-    for (int i : island) {
-      const Contact &c = contacts_[i];
-      body_stiffness_[c.body1] = body_stiffness_[c.body2] = 0.0;
-      body_contacts_[c.body1] = body_contacts_[c.body2] = 0;
+    for (int b : island_bodies_) {
+      body_stiffness_[b] = 0.0;
+      body_contacts_[b] = 0;
     }
     bool engaged = false, any_loaded = false;
     double to_contact = std::numeric_limits<double>::infinity(), fastest_approach = 0.0;
@@ -347,7 +353,7 @@ double ContactSolver::separate_overlaps(const std::vector<int> &island)
 {
   double largest = 0.0;
   for (int sweep = 0; sweep < kOverlapSweeps; ++sweep) {
-    for (int i : island) body_contacts_[contacts_[i].body1] = body_contacts_[contacts_[i].body2] = 0;
+    for (int b : island_bodies_) body_contacts_[b] = 0;
     largest = 0.0;
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Contact &c = contacts_[island[k]];
@@ -384,7 +390,9 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   body_contacts_.assign(bodies_.size(), 0);
   body_momentum_.assign(bodies_.size(), Vec3());
   body_angular_.assign(bodies_.size(), Vec3());
+  in_island_.assign(bodies_.size(), 0);
   for (const std::vector<int> &island : islands_) {
+    collect_bodies(island);
     const int substeps = compliant_impact(island, settings);
     const double shortfall = separate_overlaps(island);
     result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);

@@ -97,11 +97,13 @@ class ContactSolver {
   void prepare();
   void solve_isolated();
   void find_islands();
+  // Both after collect_bodies(island).
   int compliant_impact(const std::vector<int> &island, const Settings &settings);    // -1: capped
   double separate_overlaps(const std::vector<int> &island);    // returns the shortfall left
 
   Vec3 relative_velocity(const Contact &c) const;    // at the moment the contact closes
   void apply(const Contact &c, const Vec3 &J);
+  void collect_bodies(const std::vector<int> &island);
   void apply_all(const std::vector<int> &island);
   // Bodies' counts of the island's contacts in a Jacobi step: a share of each body's impulse.
   int share(const Contact &c) const;
@@ -115,6 +117,8 @@ class ContactSolver {
   std::vector<int> body_contacts_;           // loaded (or pushed) contacts on the body
   std::vector<Vec3> step_impulse_;           // one Jacobi step's impulse per island contact
   std::vector<Vec3> body_momentum_, body_angular_;    // ... summed per body (apply_all)
+  std::vector<int> island_bodies_;           // the island's bodies, each once
+  std::vector<char> in_island_;              // per body: scratch of collect_bodies
   std::vector<Vec3> velocity_;               // relative velocity per island contact
 };
 

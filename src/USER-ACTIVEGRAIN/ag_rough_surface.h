@@ -32,6 +32,10 @@ class RoughSurface {
   bool flat() const { return amplitude_ == 0.0; }
   SurfacePoint at(double x, double y) const;
   double rms_height() const;    // of h over the plane
+  // Bounds over the whole plane: |h| <= max_height(), and the normal's z component is at least
+  // min_normal_z() (its tilt at the steepest slope the lattice allows).
+  double max_height() const { return amplitude_; }
+  double min_normal_z() const;
   double spacing_x() const { return spacing_x_; }
   double spacing_y() const { return spacing_y_; }
 

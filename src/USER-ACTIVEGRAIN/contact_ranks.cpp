@@ -23,6 +23,9 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
   rigid_bodies_ = !providers.empty();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   tagint *tag = atom->tag;
+  nlocal_ = nlocal;
+  tag_ = tag;
+  newton_pair_ = force->newton_pair != 0;
   body_id_.assign(nall, 0);
   solved_here_.assign(nall, 0);
   std::fill(solved_here_.begin(), solved_here_.begin() + nlocal, 1);
@@ -44,20 +47,6 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
     const int owned = atom->map(tag[i]);    // map() prefers the owned copy
     solved_here_[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
   }
-}
-
-// Whether this rank solves the contact of i with neighbor j, so that each physical contact is
-// solved on one rank, once: a contact with a rigid body's atom from that atom if its body has
-// the lower ID of the two and i is the copy solved here; a pair of beads from the owned bead i
-// (with a full list or a ghost j listed on both ranks, only from the lower tag).
-bool ContactRanks::solves_pair(int i, int j) const
-{
-  const tagint body_i = body_id_[i], body_j = body_id_[j];
-  if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here_[i];
-  const int nlocal = atom->nlocal;
-  if (i >= nlocal) return false;
-  if (rigid_bodies_ || (!force->newton_pair && j >= nlocal)) return atom->tag[i] < atom->tag[j];
-  return true;
 }
 
 // span + neighbor cutoff <= ghost cutoff. The span (largest distance between two atoms of a body) is measured where a

@@ -24,8 +24,19 @@ class ContactRanks : protected Pointers {
   // This rank solves atom i's wall contacts (and, for a body's atom, the contacts its body decides).
   bool solves_atom(int i) const { return solved_here_[i]; }
   const std::vector<char> &solved_atoms() const { return solved_here_; }
-  // This rank solves the contact of i with neighbor j (from i's side of the neighbor list).
-  bool solves_pair(int i, int j) const;
+  // This rank solves the contact of i with neighbor j (from i's side of the neighbor list), so
+  // that each physical contact is solved on one rank, once: a contact with a rigid body's atom
+  // from that atom if its body has the lower ID of the two and i is the copy solved here; a pair
+  // of beads from the owned bead i (with a full list or a ghost j listed on both ranks, only from
+  // the lower tag). Inline: it screens every entry of the neighbor list.
+  bool solves_pair(int i, int j) const
+  {
+    const tagint body_i = body_id_[i], body_j = body_id_[j];
+    if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here_[i];
+    if (i >= nlocal_) return false;
+    if (rigid_bodies_ || (!newton_pair_ && j >= nlocal_)) return tag_[i] < tag_[j];
+    return true;
+  }
 
   // On several ranks, the solver rank of a body sees all its atoms and their contacts only if
   // its ghost shell reaches a neighbor cutoff beyond the body's far end: an error naming
@@ -36,6 +47,10 @@ class ContactRanks : protected Pointers {
 
  private:
   bool rigid_bodies_ = false;          // a full neighbor list with ghosts
+  // Of the atoms as assign() saw them (this force computation's).
+  int nlocal_ = 0;
+  const tagint *tag_ = nullptr;
+  bool newton_pair_ = false;
   std::vector<tagint> body_id_;        // per owned or ghost atom: its body's ID, 0 for a bead
   std::vector<char> solved_here_;
 };

@@ -181,7 +181,7 @@ double FixWallImpulse::base_az(double t) const
 }
 
 void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &atoms,
-                                        std::vector<Contact> &contacts)
+                                        const std::vector<double> &spin_speed, std::vector<Contact> &contacts)
 {
   const double t = time_now();
   const double zb = base_z(t), vb = base_vz(t), ab = base_az(t);
@@ -195,29 +195,41 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
                   peak_speed > 0.0 ? IMPACT_FRACTION * peak_speed : -1.0);
   note_wall_speed(std::fabs(vb));
 
-  double **x = atom->x;
+  double **x = atom->x, **v = atom->v;
   double *radius = atom->radius;
   int *type = atom->type;
   int *mask = atom->mask;
+  const double dt = update->dt;
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) {
     if (!atoms[i] || !(mask[i] & groupbit)) continue;
     const Vec3 centre(x[i]);
     const double r = radius[i];
+    auto may_close = [&](double gap, double wall_vz) {
+      return gap < reach && gap_may_close(gap, Vec3(v[i]) - Vec3(0, 0, wall_vz), spin_speed[i], dt);
+    };
+    // Most atoms are out of reach of a plate within a step: the surface's bounds (its largest
+    // height, its steepest tilt) tell so from the centre's height above the mean plane alone,
+    // and evaluating the surface is the costly part.
+    auto surely_out_of_reach = [&](const ActiveGrain::RoughSurface &s, double height, double wall_vz) {
+      return height > s.max_height() && !may_close((height - s.max_height()) * s.min_normal_z() - r, wall_vz);
+    };
     // The plate's tangent plane under the sphere: through the surface point above (below) the
     // centre, normal tilted by the local slope. The gap is the centre's distance from that plane
     // less the radius.
-    const ActiveGrain::SurfacePoint below = surface[BASE].at(centre.x, centre.y);
-    const Vec3 n_base = below.normal_up();
-    const double base_gap = (centre.z - zb - below.height) * n_base.z - r;
-    if (base_gap < reach)
-      contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb), Vec3(0, 0, ab),
-                          materials.of_type(type[i])});
-    if (lid == Lid::NONE) continue;
+    if (!surely_out_of_reach(surface[BASE], centre.z - zb, vb)) {
+      const ActiveGrain::SurfacePoint below = surface[BASE].at(centre.x, centre.y);
+      const Vec3 n_base = below.normal_up();
+      const double base_gap = (centre.z - zb - below.height) * n_base.z - r;
+      if (may_close(base_gap, vb))
+        contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb), Vec3(0, 0, ab),
+                            materials.of_type(type[i])});
+    }
+    if (lid == Lid::NONE || surely_out_of_reach(surface[LID], zlid - centre.z, vlid)) continue;
     const ActiveGrain::SurfacePoint above = surface[LID].at(centre.x, centre.y);
     const Vec3 n_lid = -above.normal_up();
     const double lid_gap = (zlid + above.height - centre.z) * -n_lid.z - r;
-    if (lid_gap < reach)
+    if (may_close(lid_gap, vlid))
       contacts.push_back({i, LID, n_lid, centre - n_lid * r, lid_gap, Vec3(0, 0, vlid), Vec3(0, 0, alid),
                           materials.of_type(type[i])});
   }

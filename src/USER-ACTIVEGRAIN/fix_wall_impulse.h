@@ -26,7 +26,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   double compute_vector(int) override;
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
-                          std::vector<Contact> &contacts) override;
+                          const std::vector<double> &spin_speed, std::vector<Contact> &contacts) override;
 
  private:
   enum Surface { BASE = 0, LID, NUM_SURFACES };

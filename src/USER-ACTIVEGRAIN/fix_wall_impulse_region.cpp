@@ -13,6 +13,7 @@
 #include "force.h"
 #include "group.h"
 #include "region.h"
+#include "update.h"
 
 #include <cstring>
 
@@ -86,6 +87,7 @@ void FixWallImpulseRegion::init()
 }
 
 void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<char> &atoms,
+                                              const std::vector<double> &spin_speed,
                                               std::vector<Contact> &contacts)
 {
   clear_delivered();
@@ -93,7 +95,7 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
   region->prematch();
   if (moving) region->set_velocity();
 
-  double **x = atom->x;
+  double **x = atom->x, **v = atom->v;
   double *radius = atom->radius;
   int *type = atom->type;
   int *mask = atom->mask;
@@ -114,8 +116,10 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
       Vec3 wall_velocity;    // (its acceleration is not known: taken as 0)
       if (moving) region->velocity_contact(&wall_velocity.x, xbox, ic);
       note_wall_speed(norm(wall_velocity));
-      contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], rc.r - radius[i], wall_velocity,
-                          Vec3(), materials.of_type(type[i])});
+      const double gap = rc.r - radius[i];
+      if (!gap_may_close(gap, Vec3(v[i]) - wall_velocity, spin_speed[i], update->dt)) continue;
+      contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], gap, wall_velocity, Vec3(),
+                          materials.of_type(type[i])});
     }
   }
 }

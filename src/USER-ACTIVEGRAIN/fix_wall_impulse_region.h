@@ -27,7 +27,7 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
   void restart(char *) override;
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
-                          std::vector<Contact> &contacts) override;
+                          const std::vector<double> &spin_speed, std::vector<Contact> &contacts) override;
 
  private:
   std::string region_id;

@@ -14,6 +14,16 @@
 
 namespace LAMMPS_NS {
 
+// Whether a gap between surfaces (< 0: an overlap) can close within dt: faster than the centres'
+// relative speed plus the surface speeds of the spins it cannot. Contacts it rules out are left
+// out before bodies are built (pair gran/impulse and the wall fixes).
+inline bool gap_may_close(double gap, const ActiveGrain::Vec3 &relative_velocity, double spin_speeds, double dt)
+{
+  if (gap <= 0.0) return true;
+  const double slack = gap / dt - spin_speeds;
+  return slack < 0.0 || slack * slack < norm2(relative_velocity);
+}
+
 class ImpulseWall {
  public:
   struct Contact {
@@ -30,10 +40,10 @@ class ImpulseWall {
   // noexcept(false) like LAMMPS's Pointers, so that a Fix can also be an ImpulseWall.
   virtual ~ImpulseWall() noexcept(false) = default;
   // Append the contacts of the atoms (owned or ghost) of the fix's group with atoms[i] != 0
-  // whose gap is below reach; the pair style decides which of them close within the step.
-  // Called once per force computation.
+  // whose gap is below reach and may close within the step (gap_may_close, from the atom's
+  // velocity and spin_speed[i], its spin's surface speed). Called once per force computation.
   virtual void find_wall_contacts(double reach, const std::vector<char> &atoms,
-                                  std::vector<Contact> &contacts) = 0;
+                                  const std::vector<double> &spin_speed, std::vector<Contact> &contacts) = 0;
   // The impulse delivered to an atom through a surface in this force computation, at a contact
   // that approached at speed approach (> 0) before the solve: an impact, if faster than the
   // wall's impact threshold, is tallied at the wall's drive phase.

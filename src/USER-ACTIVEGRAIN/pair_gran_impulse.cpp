@@ -383,19 +383,6 @@ void PairGranImpulse::add_found_contacts()
   }
 }
 
-// Whether atom i can close a gap to atom j (j < 0: a wall moving at wall_velocity) within this
-// step: gap < (|v_i - v_j| + surface speeds of their spins) dt, an upper bound of the closing
-// speed from the atoms' own velocities. Pairs and walls it rules out are skipped before bodies
-// are built. Spin surface speeds come from spin_speed (this step's, per atom).
-bool PairGranImpulse::may_close(int i, int j, const Vec3 &wall_velocity, double gap) const
-{
-  if (gap <= 0.0) return true;
-  double **v = atom->v;
-  const Vec3 partner = j >= 0 ? Vec3(v[j]) : wall_velocity;
-  const double slack = gap / update->dt - spin_speed[i] - (j >= 0 ? spin_speed[j] : 0.0);
-  return slack < 0.0 || slack * slack < norm2(Vec3(v[i]) - partner);
-}
-
 void PairGranImpulse::gather_pair_contacts()
 {
   double **x = atom->x;
@@ -417,7 +404,8 @@ void PairGranImpulse::gather_pair_contacts()
       if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
       const double r = std::sqrt(rsq);
       const double gap = r - radsum;
-      if (!may_close(i, j, Vec3(), gap)) continue;
+      if (!gap_may_close(gap, Vec3(atom->v[i]) - Vec3(atom->v[j]), spin_speed[i] + spin_speed[j], update->dt))
+        continue;
       const Vec3 n = d / r;    // from i to j
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
@@ -435,10 +423,9 @@ void PairGranImpulse::gather_wall_contacts()
   const double reach = neighbor->skin;
   for (ImpulseWall *wall : walls) {
     wall_scratch.clear();
-    wall->find_wall_contacts(reach, ranks.solved_atoms(), wall_scratch);
+    wall->find_wall_contacts(reach, ranks.solved_atoms(), spin_speed, wall_scratch);
     wall_speed = std::max(wall_speed, wall->wall_speed());
     for (const ImpulseWall::Contact &c : wall_scratch) {
-      if (!may_close(c.atom, -1, c.wall_velocity, c.gap)) continue;
       const int b = body_of_atom(c.atom);
       if (solver.body(b).is_static()) continue;    // a frozen atom
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));

@@ -103,7 +103,6 @@ class PairGranImpulse : public Pair {
   void refuse_unsupported();
   void grow_buffers();
   int body_of_atom(int i);
-  bool may_close(int i, int j, const ActiveGrain::Vec3 &wall_velocity, double gap) const;
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
                    double gap, const ActiveGrain::ContactMaterial &material,

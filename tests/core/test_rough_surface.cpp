@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 using ActiveGrain::RoughSurface;
@@ -51,6 +53,30 @@ TEST(RoughSurface, RmsSlopeAndHeightAreTheAskedAndPredictedOnes)
   // Small tilts: the rms angle of the normal is the rms slope.
   EXPECT_NEAR(std::acos(s.at(0.1e-3, 0.2e-3).normal_up().z),
               std::atan(std::hypot(s.at(0.1e-3, 0.2e-3).slope_x, s.at(0.1e-3, 0.2e-3).slope_y)), 1e-12);
+}
+
+TEST(RoughSurface, HeightAndTiltStayWithinTheirBounds)
+{
+  // fix wall/impulse skips atoms that cannot reach a plate within a step from these bounds,
+  // without evaluating the surface: they must hold everywhere, and be tight enough to be of use.
+  const RoughSurface s(0.06, 5e-6, 3), flat;
+  EXPECT_EQ(flat.max_height(), 0.0);
+  EXPECT_EQ(flat.min_normal_z(), 1.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-2e-3, 2e-3);
+  double highest = 0.0, lowest_nz = 1.0;
+  for (int k = 0; k < 400000; ++k) {
+    const SurfacePoint p = s.at(U(rng), U(rng));
+    highest = std::max(highest, std::fabs(p.height));
+    lowest_nz = std::min(lowest_nz, p.normal_up().z);
+  }
+  std::printf("[ measured ] largest |h| %.3g of its bound %.3g; smallest normal z %.5f, bound %.5f\n",
+              highest, s.max_height(), lowest_nz, s.min_normal_z());
+  EXPECT_LE(highest, s.max_height());
+  EXPECT_GT(highest, 0.5 * s.max_height());
+  EXPECT_GE(lowest_nz, s.min_normal_z());
+  EXPECT_LT(1.0 - lowest_nz, 1.0 - s.min_normal_z());
+  EXPECT_GT(1.0 - lowest_nz, 0.1 * (1.0 - s.min_normal_z()));
 }
 
 TEST(RoughSurface, SlopesAreTheDerivativesOfTheHeight)
