@@ -299,8 +299,8 @@ def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None,
     ``min_fraction`` of the rods; the densest comes first, the next is searched among
     the remaining rods. A layer's direction is the sign of its own rods' mean axis
     component; ``phi_ahead`` / ``phi_behind`` are bead area fractions in windows of width
-    ``window`` (default 5 L) starting ``gap`` (default L) ahead of / behind it. Lengths along
-    theta are arc lengths at the annulus's mid radius.
+    ``window`` (default 5 L, at most half a period less the gap) starting ``gap`` (default L)
+    ahead of / behind it. Lengths along theta are arc lengths at the annulus's mid radius.
     """
     rods = frame.rods()
     if len(rods) == 0:
@@ -323,7 +323,12 @@ def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None,
     qb = geometry.coordinate(xy, coord)
 
     def window_fraction(position, sign):
-        a, b = sorted((position + sign * gap, position + sign * (gap + window)))
+        # Across a period shorter than 2 (gap + window) the windows would wrap onto each other
+        # (and beyond the period no bead is counted): each keeps to its half of the period.
+        width = min(window, 0.5 * period - gap) if periodic else window
+        if width <= 0:
+            return float("nan")
+        a, b = sorted((position + sign * gap, position + sign * (gap + width)))
         if not periodic:
             a, b = max(a, lo), min(b, hi)
             if b <= a:

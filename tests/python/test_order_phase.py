@@ -86,6 +86,22 @@ def test_layer_sides_measure_both_densities():
     assert mirrored.phi_ahead == pytest.approx(np.pi / 4, rel=1e-6)
 
 
+def test_layer_sides_in_a_period_shorter_than_both_windows():
+    # A 40 x 40 periodic box (box-small) with a uniform bed: the default windows (gap L plus
+    # 5 L on each side, 54 in all) would wrap past half the period; both sides must still read
+    # the bed's own fraction (before the windows were capped they read 0.69 of it).
+    box = Box((0.0, 0.0, 0.0), (40.0, 40.0, 1.12), (True, True, False))
+    axes = np.tile([1.0, 0.0], (6, 1))
+    centres = np.column_stack([np.full(6, 20.0), np.linspace(5.0, 35.0, 6)])
+    beads = S.remove_overlaps(S.lattice_beads(0, 40, 0, 40, 1.25), box, centres, axes)
+    fr = S.make_frame(box, beads, 0.5, centres, axes)
+    layer = A.layer_sides(fr, geometry_from_box(box))
+    phi = np.pi / 4 / 1.25 ** 2    # the lattice's own fraction (beads are gone only at the rods)
+    assert layer.coord == "x"
+    assert layer.phi_ahead == pytest.approx(phi, rel=0.05)
+    assert layer.phi_behind == pytest.approx(phi, rel=0.05)
+
+
 @pytest.mark.parametrize("seed", [0, 1, 2])
 @pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed"])
 def test_classifier_recognises_constructed_phases(phase, seed):
