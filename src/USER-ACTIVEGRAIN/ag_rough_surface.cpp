@@ -55,19 +55,15 @@ RoughSurface::RoughSurface(double rms_slope, double correlation_length, std::uin
   // <|grad h|^2> = amplitude^2 <(dN/du)^2> (1/sx^2 + 1/sy^2) = rms_slope^2
   amplitude_ = rms_slope /
       std::sqrt(kSlopeVariance * (1.0 / (spacing_x_ * spacing_x_) + 1.0 / (spacing_y_ * spacing_y_)));
+  // h blends node heights in [-amplitude, amplitude) with weights in [0, 1], so |h| <= amplitude;
+  // along each lattice direction the slope is at most max f' = 15/8 times a node difference (at
+  // most 2 amplitude) over the spacing.
+  const double steepest = fade_slope(0.5) * 2.0 * amplitude_;
+  const double slope_x = steepest / spacing_x_, slope_y = steepest / spacing_y_;
+  min_normal_z_ = 1.0 / std::sqrt(1.0 + slope_x * slope_x + slope_y * slope_y);
 }
 
 double RoughSurface::rms_height() const { return amplitude_ * std::sqrt(kHeightVariance); }
-
-// h blends node heights in [-amplitude, amplitude) with weights in [0, 1], so |h| <= amplitude;
-// along each lattice direction the slope is at most max f' = 15/8 times a node difference (at
-// most 2 amplitude) over the spacing.
-double RoughSurface::min_normal_z() const
-{
-  const double steepest = fade_slope(0.5) * 2.0 * amplitude_;
-  const double slope_x = steepest / spacing_x_, slope_y = steepest / spacing_y_;
-  return 1.0 / std::sqrt(1.0 + slope_x * slope_x + slope_y * slope_y);
-}
 
 double RoughSurface::node_height(std::int64_t i, std::int64_t j) const
 {

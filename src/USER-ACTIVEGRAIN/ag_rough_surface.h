@@ -35,7 +35,7 @@ class RoughSurface {
   // Bounds over the whole plane: |h| <= max_height(), and the normal's z component is at least
   // min_normal_z() (its tilt at the steepest slope the lattice allows).
   double max_height() const { return amplitude_; }
-  double min_normal_z() const;
+  double min_normal_z() const { return min_normal_z_; }
   double spacing_x() const { return spacing_x_; }
   double spacing_y() const { return spacing_y_; }
 
@@ -43,6 +43,7 @@ class RoughSurface {
   double node_height(std::int64_t i, std::int64_t j) const;
 
   double amplitude_ = 0.0;    // heights at lattice nodes are uniform in [-amplitude, amplitude)
+  double min_normal_z_ = 1.0;
   double spacing_x_ = 1.0, spacing_y_ = 1.0;
   std::int64_t cells_x_ = 0, cells_y_ = 0;    // > 0: periodic with this many cells
   std::uint64_t seed_ = 0;

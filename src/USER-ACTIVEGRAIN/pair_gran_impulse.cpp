@@ -385,7 +385,7 @@ void PairGranImpulse::add_found_contacts()
 
 void PairGranImpulse::gather_pair_contacts()
 {
-  double **x = atom->x;
+  double **x = atom->x, **v = atom->v;
   double *radius = atom->radius;
   int *type = atom->type;
   const double reach = neighbor->skin;
@@ -404,8 +404,7 @@ void PairGranImpulse::gather_pair_contacts()
       if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
       const double r = std::sqrt(rsq);
       const double gap = r - radsum;
-      if (!gap_may_close(gap, Vec3(atom->v[i]) - Vec3(atom->v[j]), spin_speed[i] + spin_speed[j], update->dt))
-        continue;
+      if (!gap_may_close(gap, Vec3(v[i]) - Vec3(v[j]), spin_speed[i] + spin_speed[j], update->dt)) continue;
       const Vec3 n = d / r;    // from i to j
       const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
       const int bi = body_of_atom(i), bj = body_of_atom(j);
