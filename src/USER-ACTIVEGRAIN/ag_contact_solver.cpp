@@ -114,14 +114,14 @@ constexpr double kTurnStiffestE = 0.05;
 // Matrices and targets from the pre-solve velocities; which contacts share a movable body.
 void ContactSolver::prepare()
 {
-  std::vector<int> contacts_of_body(bodies_.size(), 0);
+  contacts_of_body_.assign(bodies_.size(), 0);
   for (Contact &c : contacts_) {
     c.K = contact_matrix(bodies_[c.body1], c.r1, bodies_[c.body2], c.r2);
     c.impulse = Vec3();
-    ++contacts_of_body[c.body1];
-    ++contacts_of_body[c.body2];
+    ++contacts_of_body_[c.body1];
+    ++contacts_of_body_[c.body2];
   }
-  auto alone = [&](int body) { return bodies_[body].is_static() || contacts_of_body[body] == 1; };
+  auto alone = [&](int body) { return bodies_[body].is_static() || contacts_of_body_[body] == 1; };
   for (Contact &c : contacts_) c.isolated = alone(c.body1) && alone(c.body2);
   find_islands();
 }
@@ -141,17 +141,19 @@ void ContactSolver::find_islands()
     const int r1 = root(c.body1), r2 = root(c.body2);
     if (r1 != r2) island_root_[std::max(r1, r2)] = std::min(r1, r2);
   }
-  islands_.clear();
-  std::vector<int> island_of_root(bodies_.size(), -1);
+  // The islands' lists keep their storage from solve to solve.
+  island_of_root_.assign(bodies_.size(), -1);
+  num_islands_ = 0;
   for (int i = 0; i < num_contacts(); ++i) {
     const Contact &c = contacts_[i];
     if (c.isolated) continue;
     const int r = root(bodies_[c.body1].is_static() ? c.body2 : c.body1);
-    if (island_of_root[r] < 0) {
-      island_of_root[r] = static_cast<int>(islands_.size());
-      islands_.emplace_back();
+    if (island_of_root_[r] < 0) {
+      island_of_root_[r] = num_islands_++;
+      if (islands_.size() < static_cast<std::size_t>(num_islands_)) islands_.emplace_back();
+      islands_[island_of_root_[r]].clear();
     }
-    islands_[island_of_root[r]].push_back(i);
+    islands_[island_of_root_[r]].push_back(i);
   }
 }
 
@@ -391,7 +393,8 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   body_momentum_.assign(bodies_.size(), Vec3());
   body_angular_.assign(bodies_.size(), Vec3());
   in_island_.assign(bodies_.size(), 0);
-  for (const std::vector<int> &island : islands_) {
+  for (int k = 0; k < num_islands_; ++k) {
+    const std::vector<int> &island = islands_[k];
     collect_bodies(island);
     const int substeps = compliant_impact(island, settings);
     const double shortfall = separate_overlaps(island);

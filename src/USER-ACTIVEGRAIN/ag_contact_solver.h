@@ -111,7 +111,10 @@ class ContactSolver {
   std::vector<RigidBodyState> bodies_;
   std::vector<Contact> contacts_;
   std::vector<std::vector<int>> islands_;    // contacts that share movable bodies, in order
+  int num_islands_ = 0;                      // (the first num_islands_ lists of islands_)
   std::vector<int> island_root_;             // per body (union-find)
+  std::vector<int> island_of_root_;          // per root body: its island, -1 before it has one
+  std::vector<int> contacts_of_body_;        // per body: its contacts (isolated ones: 1)
   // Scratch of the compliant impact, per body and per island contact.
   std::vector<double> body_stiffness_;       // engaged spring stiffness on the body
   std::vector<int> body_contacts_;           // loaded (or pushed) contacts on the body

@@ -28,11 +28,14 @@ class ContactRanks : protected Pointers {
   // that each physical contact is solved on one rank, once: a contact with a rigid body's atom
   // from that atom if its body has the lower ID of the two and i is the copy solved here; a pair
   // of beads from the owned bead i (with a full list or a ghost j listed on both ranks, only from
-  // the lower tag). Inline: it screens every entry of the neighbor list.
-  bool solves_pair(int i, int j) const
+  // the lower tag).
+  bool solves_pair(int i, int j) const { return may_solve_pair(i, j) && solved_here_[i]; }
+  // ... all of it but whether i is the copy solved here, which can change from step to step:
+  // fixed between neighbor list builds (NearPairs).
+  bool may_solve_pair(int i, int j) const
   {
     const tagint body_i = body_id_[i], body_j = body_id_[j];
-    if (body_i || body_j) return body_i && (!body_j || body_i < body_j) && solved_here_[i];
+    if (body_i || body_j) return body_i && (!body_j || body_i < body_j);
     if (i >= nlocal_) return false;
     if (rigid_bodies_ || (!newton_pair_ && j >= nlocal_)) return tag_[i] < tag_[j];
     return true;

@@ -43,19 +43,23 @@ static constexpr double DEFAULT_BETA = 0.2;
 // restitution (docs/pair_gran_impulse.rst: the error is about 3/resolution).
 static constexpr int MIN_RESOLUTION = 20;
 static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
+// The near pairs (NearPairs) are those within this fraction of the neighbor skin.
+static constexpr double NEAR_MARGIN = 0.25;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), freeze_groupbit(0), pending(nullptr), force_dt(0.0),
-    ghost_pairs(false), ranks(lmp), nmax(0), reverse_columns(NUM_CONTACT_COLUMNS), contact_sums(nullptr),
-    fastest(0.0), radius_excess(0.0), wall_speed(0.0), last_virial{}, last_virial_step(-1),
+    ghost_pairs(false), ranks(lmp), near(lmp), nmax(0), reverse_columns(NUM_CONTACT_COLUMNS), contact_sums(nullptr),
+    fastest(0.0), radius_excess(0.0), fastest_near(0.0), wall_speed(0.0), last_virial{}, last_virial_step(-1),
     skin_warned(false), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
   single_enable = 0;
   restartinfo = 1;
   finitecutflag = 1;
-  comm_reverse = NUM_CONTACT_COLUMNS;
+  // Contact sums of ghost atoms reach their owners with newton off too (Comm sizes its buffers
+  // for reverse comm from comm_reverse_off then).
+  comm_reverse = comm_reverse_off = NUM_CONTACT_COLUMNS;
   // Contact forces reach owners through this style's own reverse communication, so the f.r
   // virial over owned and ghost atoms would be wrong: the virial is tallied per contact.
   no_virial_fdotr_compute = 1;
@@ -271,7 +275,8 @@ void PairGranImpulse::grow_buffers()
   atom_body.assign(nall, -1);
   spin_speed.resize(nall);
   for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
-  fastest = radius_excess = wall_speed = 0.0;
+  fastest = radius_excess = wall_speed = fastest_near = 0.0;
+  for (int i = 0; i < nall; i++) fastest_near = std::max(fastest_near, norm(Vec3(atom->v[i])) + spin_speed[i]);
   for (int i = 0; i < atom->nlocal; i++) {
     fastest = std::max(fastest, norm(Vec3(atom->v[i])) + spin_speed[i]);
     radius_excess = std::max(radius_excess, atom->radius[i] - maxrad[atom->type[i]]);
@@ -303,9 +308,7 @@ int PairGranImpulse::body_of_atom(int i)
       if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
     }
   }
-  auto found = body_index.find(key);
-  const int body = found != body_index.end() ? found->second : solver.add_body(state);
-  if (found == body_index.end()) body_index.emplace(key, body);
+  const int body = body_index.find_or_insert(static_cast<std::uint64_t>(key), [&] { return solver.add_body(state); });
   atom_body[i] = body;
   return body;
 }
@@ -388,32 +391,26 @@ void PairGranImpulse::gather_pair_contacts()
   double **x = atom->x, **v = atom->v;
   double *radius = atom->radius;
   int *type = atom->type;
-  const double reach = neighbor->skin;
-
-  const int nlist = list->inum + (list->ghost ? list->gnum : 0);
-  for (int ii = 0; ii < nlist; ii++) {
-    const int i = list->ilist[ii];
-    if (i >= atom->nlocal && !ranks.solves_atom(i)) continue;    // most ghosts: nothing to solve here
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      if (!ranks.solves_pair(i, j)) continue;
-      Vec3 d = Vec3(x[j]) - Vec3(x[i]);
-      const double radsum = radius[i] + radius[j];
-      const double rsq = norm2(d);
-      if (rsq >= (radsum + reach) * (radsum + reach) || rsq == 0.0) continue;
-      const double r = std::sqrt(rsq);
-      const double gap = r - radsum;
-      if (!gap_may_close(gap, Vec3(v[i]) - Vec3(v[j]), spin_speed[i] + spin_speed[j], update->dt)) continue;
-      const Vec3 n = d / r;    // from i to j
-      const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
-      const int bi = body_of_atom(i), bj = body_of_atom(j);
-      if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
-      if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
-      const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
-      add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0, 0.0}, n, gap, material, lever_arm(i, bi, point),
-                  lever_arm(j, bj, point), gravity_of_atom(j) - gravity_of_atom(i));
-    }
+  const double margin = NEAR_MARGIN * neighbor->skin;
+  near.refresh(list, ranks, margin, fastest_near);
+  for (const auto &pair : near.pairs()) {
+    const int i = pair.first, j = pair.second;
+    if (!ranks.solves_atom(i)) continue;    // a body's copy solved on another rank or image
+    Vec3 d = Vec3(x[j]) - Vec3(x[i]);
+    const double radsum = radius[i] + radius[j];
+    const double rsq = norm2(d);
+    if (rsq >= (radsum + margin) * (radsum + margin) || rsq == 0.0) continue;
+    const double r = std::sqrt(rsq);
+    const double gap = r - radsum;
+    if (!gap_may_close(gap, Vec3(v[i]) - Vec3(v[j]), spin_speed[i] + spin_speed[j], update->dt)) continue;
+    const Vec3 n = d / r;    // from i to j
+    const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
+    const int bi = body_of_atom(i), bj = body_of_atom(j);
+    if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
+    if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
+    const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
+    add_contact(bi, bj, {i, j, nullptr, 0, point, 0.0, 0.0}, n, gap, material, lever_arm(i, bi, point),
+                lever_arm(j, bj, point), gravity_of_atom(j) - gravity_of_atom(i));
   }
 }
 
@@ -589,6 +586,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
       ranks.assign(providers);
       ranks.check_ghost_cutoff(STYLE);
     }
+    near.invalidate();    // setup may have sorted the atoms without a new neighbor list build
     return;
   }
 
@@ -779,7 +777,7 @@ void *PairGranImpulse::extract(const char *name, int &dim)
 double PairGranImpulse::memory_usage()
 {
   return (double) NUM_CONTACT_COLUMNS * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
-      ranks.memory_usage() +
+      ranks.memory_usage() + near.memory_usage() +
       (double) found.capacity() * sizeof(FoundContact) +
       (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
 }

@@ -11,13 +11,14 @@ PairStyle(gran/impulse,PairGranImpulse);
 #define LMP_PAIR_GRAN_IMPULSE_H
 
 #include "ag_contact_solver.h"
+#include "ag_hash.h"
 #include "contact_ranks.h"
 #include "impulse_wall.h"
+#include "near_pairs.h"
 #include "pair.h"
 
 #include <cstdint>
 #include <tuple>
-#include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -147,12 +148,13 @@ class PairGranImpulse : public Pair {
   std::vector<FoundContact> found;
   std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
   std::vector<ImpulseWall::Contact> wall_scratch;
-  std::unordered_map<tagint, int> body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
+  ActiveGrain::KeyIndex body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
   std::vector<int> atom_body;                     // solver body of each atom, -1 before lookup
   std::vector<double> spin_speed;                 // |omega| radius of each atom, this step
 
   bool ghost_pairs;       // rigid bodies exist: a full neighbor list with ghosts
   ContactRanks ranks;     // which rank solves which contact
+  NearPairs near;         // the pairs of the neighbor list that may touch soon
 
   // Per owned and ghost atom, summed onto owners by reverse comm: the contact force and torque,
   // and the late impulse and its moment about the atom (each impulse times the time after the
@@ -168,6 +170,7 @@ class PairGranImpulse : public Pair {
   // This rank's atoms in this step: largest |v| + |omega| r (for the skin warning), and largest
   // excess of a radius over its type's neighbor-cutoff radius (an atom inserted by another means).
   double fastest, radius_excess;
+  double fastest_near;    // largest |v| + |omega| r of owned and ghost atoms (NearPairs)
   double wall_speed;    // largest speed of a wall in this step (for the skin warning)
   // Global virial of the last step's contacts, and that step: a run that continues from it
   // shows it at its setup, as it shows that step's pending force.

@@ -2,6 +2,8 @@
 // also runs under mpirun -np 2 and -np 4): rank 0 runs the serial reference on its own.
 #include "beads_deck.h"
 
+#include "comm.h"
+
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -138,4 +140,25 @@ TEST_F(BeadMonolayer, NewtonOffAndOnGiveTheSameCollisionAcrossRanksAndPeriodicBo
     EXPECT_NEAR(value("vx[2]-vx[1]"), 0.3 * 0.15, 1e-12) << "newton " << newton;
     EXPECT_NEAR(value("vx[1]+vx[2]"), 0.05, 1e-12) << "newton " << newton;
   }
+}
+
+namespace {
+// Comm's largest reverse communication, in datums per atom (protected: read through a member
+// pointer of a derived class).
+struct CommReverseSize : LAMMPS_NS::Comm {
+  static int of(LAMMPS_NS::Comm *comm) { return comm->*(&CommReverseSize::maxreverse); }
+};
+}    // namespace
+
+TEST_F(BeadMonolayer, NewtonOffSizesReverseCommForTheContactSums)
+{
+  // The contact sums of ghost atoms (force, torque, late impulse and virial) travel to their
+  // owners with newton off too. Comm sizes its buffers for that from the pair style's
+  // comm_reverse_off: without it, they overflowed on several ranks (the 2-rank pour of
+  // examples/lammps-granular then hung in the next forward communication).
+  command("newton off\nunits si\natom_style sphere\nboundary p p f\n"
+          "region box block 0 0.01 0 0.01 0 0.002\ncreate_box 1 box\ncomm_modify vel yes\n"
+          "create_atoms 1 single 0.005 0.005 0.001\nset atom * diameter 0.001\n"
+          "pair_style gran/impulse\npair_coeff * * 0.3 0.05\nfix nve all nve/sphere\nrun 0 post no");
+  EXPECT_GE(CommReverseSize::of(lmp->comm), lmp->force->pair->comm_reverse);
 }
