@@ -227,8 +227,10 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   auto measure_velocities = [&] {
     for (std::size_t k = 0; k < size; ++k) velocity_[k] = relative_velocity(contacts_[island[k]]);
   };
+  bool plastic = false;
   for (int i : island) {
     Contact &c = contacts_[i];
+    plastic = plastic || c.material.e == 0.0;
     c.knn = dot(c.n, c.K * c.n);
     c.tangential = TangentialStep(c.K, c.n);
     c.compression = c.peak = 0.0;
@@ -268,6 +270,8 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
         to_contact = std::min(to_contact, (spring_offset(c) - c.compression) / -un);
       }
     }
+    for (int b : island_bodies_)
+      if (bodies_[b].is_static()) body_stiffness_[b] = 0.0;
     if (!any_loaded && fastest_approach <= settled) return substeps;
     if (!engaged) {
       if (!std::isfinite(to_contact)) return substeps;    // all unloaded, none approaching
@@ -281,13 +285,12 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
     if (substeps == settings.max_substeps) return -1;
     ++substeps;
 
+    // (A static body's stiffness is left 0 after the classification above.)
     auto substep = [&] {
       double omega2 = 0.0;
       for (int i : island) {
         const Contact &c = contacts_[i];
-        const double k1 = bodies_[c.body1].is_static() ? 0.0 : body_stiffness_[c.body1];
-        const double k2 = bodies_[c.body2].is_static() ? 0.0 : body_stiffness_[c.body2];
-        omega2 = std::max(omega2, c.knn * std::max(k1, k2));
+        omega2 = std::max(omega2, c.knn * std::max(body_stiffness_[c.body1], body_stiffness_[c.body2]));
       }
       return phase_per_substep / std::sqrt(omega2);
     };
@@ -302,8 +305,8 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       if (c.unloading || e == 0.0 || e == 1.0 || force <= 0.0) continue;
       if (dot(velocity_[k], c.n) + kTurnLookahead * c.knn * force * dtau < 0.0) continue;
       const double extra = 1.0 / std::max(e * e, kTurnStiffestE * kTurnStiffestE) - 1.0;
-      body_stiffness_[c.body1] += extra;
-      body_stiffness_[c.body2] += extra;
+      if (!bodies_[c.body1].is_static()) body_stiffness_[c.body1] += extra;
+      if (!bodies_[c.body2].is_static()) body_stiffness_[c.body2] += extra;
       turning = true;
     }
     if (turning) dtau = substep();
@@ -325,7 +328,7 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
     // the kick's part after the peak would return energy it must not, so it is taken back (all
     // from the same state, as the kick).
     bool plastic_turned = false;
-    for (std::size_t k = 0; k < size; ++k) {
+    for (std::size_t k = 0; plastic && k < size; ++k) {
       const Contact &c = contacts_[island[k]];
       const double before = dot(velocity_[k], c.n);
       step_impulse_[k] = c.material.e == 0.0 && before < 0.0 ? step_impulse_[k] : Vec3();
@@ -339,9 +342,9 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       for (std::size_t k = 0; k < size; ++k)
         if (norm2(step_impulse_[k]) > 0.0) contacts_[island[k]].unloading = true;
     }
-    measure_velocities();
     for (std::size_t k = 0; k < size; ++k) {
       Contact &c = contacts_[island[k]];
+      velocity_[k] = relative_velocity(c);
       compress(c, -dot(velocity_[k], c.n) * dtau);
     }
   }

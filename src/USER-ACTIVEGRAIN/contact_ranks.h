@@ -21,6 +21,8 @@ class ContactRanks : protected Pointers {
   // providers every owned atom is solved here (a half neighbor list).
   void assign(const std::vector<RigidBodyProvider *> &providers);
 
+  // The ID of atom i's rigid body (the same on every rank), 0 for an atom in none.
+  tagint body_id(int i) const { return body_id_[i]; }
   // This rank solves atom i's wall contacts (and, for a body's atom, the contacts its body decides).
   bool solves_atom(int i) const { return solved_here_[i]; }
   const std::vector<char> &solved_atoms() const { return solved_here_; }

@@ -44,7 +44,7 @@ static constexpr double IMPACT_FRACTION = 0.01;
        [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
-    lid(Lid::NONE), rough_slope(0.0), rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
+    lid(Lid::NONE), own_clock(false), clock_time(0.0), clock_dt(0.0), clock_step(0), rough_slope(0.0), rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
     error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);
@@ -108,6 +108,7 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
   // fix_modify virial yes: the virial of the plates' contact forces (global, as pair
   // gran/impulse tallies them; off by default as for fix wall/gran).
   virial_global_flag = 1;
+  restart_global = 1;
 }
 
 int FixWallImpulse::setmask()
@@ -155,13 +156,47 @@ void FixWallImpulse::check_time_step(bool warn)
 
 void FixWallImpulse::reset_dt()
 {
+  if (own_clock) {
+    clock_time += (update->ntimestep - clock_step) * clock_dt;
+    clock_step = update->ntimestep;
+    clock_dt = update->dt;
+  }
   check_time_step(false);
 }
 
 // Simulation time of the current positions; continues exactly across restarts.
 double FixWallImpulse::time_now() const
 {
+  if (own_clock) return clock_time + (update->ntimestep - clock_step) * update->dt;
   return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+}
+
+void FixWallImpulse::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  // the origin, the time step counted from it, and the step of the file
+  const double clock[4] = {own_clock ? clock_time : update->atime,
+                           (double) (own_clock ? clock_step : update->atimestep), update->dt,
+                           (double) update->ntimestep};
+  const int size = sizeof(clock);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(clock, sizeof(double), 4, fp);
+}
+
+void FixWallImpulse::restart(char *buf)
+{
+  const auto *clock = reinterpret_cast<const double *>(buf);
+  clock_time = clock[0];
+  clock_step = static_cast<bigint>(clock[1]);
+  clock_dt = clock[2];
+  // A time step set after read_restart, before this fix was defined, counts from the file's step.
+  if (update->dt != clock_dt) {
+    const auto file_step = static_cast<bigint>(clock[3]);
+    clock_time += (file_step - clock_step) * clock_dt;
+    clock_step = file_step;
+    clock_dt = update->dt;
+  }
+  own_clock = true;
 }
 
 double FixWallImpulse::base_z(double t) const

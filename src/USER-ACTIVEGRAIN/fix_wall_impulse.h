@@ -22,6 +22,8 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   int setmask() override;
   void init() override;
   void reset_dt() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   double compute_scalar() override;
   double compute_vector(int) override;
 
@@ -42,6 +44,14 @@ class FixWallImpulse : public Fix, public ImpulseWall {
 
   double z0, gap, amplitude, frequency, phase;
   Lid lid;
+  // The plates' clock: LAMMPS's simulation time, unless a restart file set it. LAMMPS keeps its
+  // time as an origin (time, step) plus steps times dt; a restart file written during a run holds
+  // that run's origin, which the next run's setup drops (Integrate::init moves the origin's step
+  // to the present one, so the time since it is lost). This fix stores its origin in the restart
+  // file and counts from it: the drive continues bit for bit. dt changes move the origin.
+  bool own_clock;
+  double clock_time, clock_dt;
+  bigint clock_step;
   // Frozen roughness of each plate (flat unless keyword rough): rms slope, correlation length and
   // seed as given; the surfaces are made in init(), when the box is known.
   double rough_slope, rough_length;

@@ -284,21 +284,20 @@ void PairGranImpulse::grow_buffers()
 }
 
 // The solver body of atom i: its rigid body if a provider claims it (all atoms of one body
-// share one solver body), else a solid sphere. Ghost images of one bead share its body too.
+// share one solver body), else a solid sphere. Ghost images of one bead share its body too. The
+// body's state is made once, for the first of its atoms met in the step.
 int PairGranImpulse::body_of_atom(int i)
 {
   if (atom_body[i] >= 0) return atom_body[i];
-  RigidBodyState state;
-  tagint id = 0;
-  tagint key = -1;
-  for (RigidBodyProvider *provider : providers)
-    if (provider->body_of_atom(i, state, id)) {
-      key = 2 * id + 1;
-      break;
-    }
-  if (key < 0) {
-    key = 2 * atom->tag[i];
-    if (atom->mask[i] & freeze_groupbit) {
+  const tagint body_id = ranks.body_id(i);
+  const tagint key = body_id ? 2 * body_id + 1 : 2 * atom->tag[i];
+  atom_body[i] = body_index.find_or_insert(static_cast<std::uint64_t>(key), [&] {
+    RigidBodyState state;
+    tagint id = 0;
+    if (body_id) {
+      for (RigidBodyProvider *provider : providers)
+        if (provider->body_of_atom(i, state, id)) break;
+    } else if (atom->mask[i] & freeze_groupbit) {
       // Held in place by fix freeze: moves no more than a wall does.
       state = RigidBodyState::wall(Vec3(atom->v[i]));
       state.com = Vec3(atom->x[i]);
@@ -307,10 +306,9 @@ int PairGranImpulse::body_of_atom(int i)
                                      Vec3(atom->v[i]), Vec3(atom->omega[i]));
       if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
     }
-  }
-  const int body = body_index.find_or_insert(static_cast<std::uint64_t>(key), [&] { return solver.add_body(state); });
-  atom_body[i] = body;
-  return body;
+    return solver.add_body(state);
+  });
+  return atom_body[i];
 }
 
 // Lever arm from body's centre of mass to point, taken from atom i's own image of the body.

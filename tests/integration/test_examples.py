@@ -168,3 +168,31 @@ def test_polydispersity_out_of_range_is_an_error(tmp_path, polydisp):
     done = polydisperse(tmp_path, 1, polydisp)
     assert done.returncode == 1
     assert f"ERROR: in.create: polydisp {polydisp} must be in [0, 0.3)" in done.stdout, done.stdout[-2000:]
+
+
+THERMO = re.compile(r"^\s+(\d+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+(\d+)\s+([\d.e+-]+)\s+[\d.e+-]+\s*$", re.M)
+
+
+def channel_thermo(out, ranks, *extra):
+    """step -> (time, polar order, nematic order, rods, temperature) of a channel-small run to 0.06 s."""
+    done = subprocess.run([*mpi_prefix(ranks), LMP, "-in", "in.channel-small", "-var", "out", str(out),
+                           "-var", "time", "0.06", "-var", "dump", "0.005", "-log", "none", *extra],
+                          cwd=EXAMPLES / "channel", capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and "ERROR" not in done.stdout, done.stdout[-3000:]
+    return {int(m.group(1)): tuple(float(v) for v in m.groups()[1:]) for m in THERMO.finditer(done.stdout)}
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_channel_continues_from_its_restart_file(tmp_path, ranks):
+    """-var continue: the channel deck goes on from a restart file written during a run (0.05 s, step
+    1000), with the file's time and the run's end time, as the uninterrupted run (to round-off: the
+    atoms come back in another order, so sums differ in their last bits, which the bed's chaotic
+    collisions amplify within hundreds of steps)."""
+    whole = channel_thermo(tmp_path / "whole", ranks)
+    restart = tmp_path / "whole" / "channel.restart.1"
+    assert restart.exists()
+    continued = channel_thermo(tmp_path / "continued", ranks, "-var", "continue", str(restart))
+    assert sorted(continued) == [1000, 1100, 1200]    # from the file's step to the asked end time
+    for step in (1000, 1100):
+        assert continued[step][0] == pytest.approx(step * DT, rel=1e-12)    # the simulation time
+        assert continued[step][1:] == pytest.approx(whole[step][1:], rel=1e-6), step

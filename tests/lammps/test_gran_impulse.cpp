@@ -266,6 +266,35 @@ TEST_F(GranImpulse, MovingRegionWallContinuesExactlyAcrossARestart)
     EXPECT_NEAR(restarted[k], continuous[k], 1e-12 * (k % 4 < 2 ? 0.01 : 0.1)) << k;
 }
 
+TEST_F(GranImpulse, VibratingPlatesKeepTheirPhaseAcrossARestartWrittenDuringARun)
+{
+  // A bead between vibrating plates; the restart file is written by the restart command inside
+  // one run, at a step (1370) that is no whole number of vibration periods (500 steps). LAMMPS
+  // keeps the run's start time in such a file and drops the time since it at the next run's
+  // setup (while a read_restart is not followed by a timestep command): the plates, whose drive
+  // is a function of the time, would jump by 370 steps of phase (0.74 of a period).
+  const std::string styles = "fix nve all nve/sphere\nfix g all gravity 9.81 vector 0 0 -1\n"
+                             "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 vibrate 4e-5 200 0.3 e 0.3 mu 0.05\n";
+  auto state = [&]() {
+    return std::vector<double>{value("f_plates[1]"), value("f_plates[3]"), value("z[1]"), value("vz[1]")};
+  };
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command(BOX);
+  bead(0.005, 0.005, 0.0005, 0.01, 0.0, 0.0);
+  command(PAIR);
+  command(styles);
+  command("restart 1370 plates-phase.restart\nrun 2000 post no");
+  const auto continuous = state();
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command("read_restart plates-phase.restart.1370\ncomm_modify vel yes\nneighbor 0.0002 bin\n" + styles +
+          "run 630 post no");
+  const auto restarted = state();
+  EXPECT_NEAR(restarted[0], continuous[0], 1e-15);    // base plate height
+  EXPECT_NEAR(restarted[1], continuous[1], 1e-12);    // plate velocity
+  EXPECT_NEAR(restarted[2], continuous[2], 1e-12);    // the bead
+  EXPECT_NEAR(restarted[3], continuous[3], 1e-9);
+}
+
 TEST_F(GranImpulse, AtomsOfFixFreezeAreBodiesOfInfiniteMass)
 {
   // A bead hits a frozen bead head-on: it rebounds with e as from a wall, and the frozen bead
