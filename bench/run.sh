@@ -6,7 +6,7 @@
 #   channel  the same channel with 8 rods (phi_r 0.031; 917 beads + 8 x 9 rod spheres)
 #   box      in.box-small's 40 x 40 mm periodic box, phi_b 0.80, phi_r 0.03 (1630 beads, 13 rods)
 # Sides and plates:
-#   ours       the paper decks' defaults: rough plates (rms slope 0.06, 5 um), dt 5e-5 s
+#   ours       the paper decks' defaults: rough plates (rms slope 0.06, 5 um), dt 1e-4 s
 #   ours-flat  the same with -var rough 0: flat plates, like for like with stock
 #   stock      flat plates (fix wall/gran has no roughness), hooke kn 3.2e5 N/m, dt 1.25e-7 s, no
 #              tangential damping: the softest kn of stiffness.sh's scan whose single-rod speed
@@ -32,7 +32,7 @@ lmp=$(cd "$(dirname "$lmp")" && pwd)/$(basename "$lmp")   # absolute: the runs s
 warm=${WARM:-0.05}; time=${TIME:-0.1}
 [ $quick = 1 ] && { warm=${WARM:-0}; time=${TIME:-0.002}; }
 cases=(${CASES:-beads channel box})
-dt_ours=5.0e-5; dt_stock=${DT_STOCK:-1.25e-7}; kn=${KN:-3.2e5}; xgt=${XGT:-0}
+dt_ours=1.0e-4; dt_stock=${DT_STOCK:-1.25e-7}; kn=${KN:-3.2e5}; xgt=${XGT:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$here"

@@ -8,6 +8,7 @@
 # kymograph.png (bead area fraction against angle and time), polar.txt (rod order per frame, with
 # the tangential order) and phase.txt (phase per frame).
 set -euo pipefail
+# DT: the run's time step (the deck's default, or what -var dt gave it), for times in seconds
 out=${1:?usage: analyse.sh OUTDIR [R_IN R_OUT]}
 r_in=${2:-40}
 r_out=${3:-60}
@@ -15,7 +16,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 ag() { /usr/bin/python3 -m activegrain "$@"; }
 dump="$out/annulus.dump"
-common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3 --timestep 1e-5)
+common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3 --timestep "${DT:-1.0e-4}")
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 for coord in r theta; do
   ag profile "$dump" "${common[@]}" --coord $coord --species all --plot "$out/profile_$coord.png" > "$out/profile_$coord.txt"
