@@ -44,7 +44,8 @@ static constexpr double IMPACT_FRACTION = 0.01;
        [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
-    lid(Lid::NONE), own_clock(false), clock_time(0.0), clock_dt(0.0), clock_step(0), rough_slope(0.0), rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
+    lid(Lid::NONE), own_clock(false), clock_time(0.0), clock_dt(0.0), clock_step(0), rough_slope(0.0),
+    rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
     error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);

@@ -42,7 +42,6 @@ void NearPairs::build(NeighList *list, const ContactRanks &ranks)
   const double *radius = atom->radius;
   nall_ = atom->nlocal + atom->nghost;
   list_built_ = neighbor->lastcall;
-  builds_++;
   x_built_.resize(3 * static_cast<std::size_t>(nall_));
   radius_built_.assign(radius, radius + nall_);
   for (int i = 0; i < nall_; i++) std::copy(x[i], x[i] + 3, &x_built_[3 * i]);

@@ -30,8 +30,6 @@ class NearPairs : protected Pointers {
   const std::vector<std::pair<int, int>> &pairs() const { return pairs_; }
   // Screen anew at the next refresh (the atoms may have been sorted without a list build).
   void invalidate() { list_built_ = -1; }
-  // Steps in which the near pairs were screened anew from the neighbor list (since construction).
-  bigint builds() const { return builds_; }
 
   double memory_usage() const;
 
@@ -44,7 +42,6 @@ class NearPairs : protected Pointers {
   int nall_ = 0;
   double margin_ = 0.0;
   std::vector<double> x_built_, radius_built_;    // per atom, as they were at the build
-  bigint builds_ = 0;
 };
 
 }    // namespace LAMMPS_NS

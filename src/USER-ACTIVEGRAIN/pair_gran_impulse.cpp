@@ -49,8 +49,9 @@ static constexpr double NEAR_MARGIN = 0.25;
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), freeze_groupbit(0), pending(nullptr), force_dt(0.0),
-    ghost_pairs(false), ranks(lmp), near(lmp), nmax(0), reverse_columns(NUM_CONTACT_COLUMNS), contact_sums(nullptr),
-    fastest(0.0), radius_excess(0.0), fastest_near(0.0), wall_speed(0.0), last_virial{}, last_virial_step(-1),
+    ghost_pairs(false), ranks(lmp), near(lmp), nmax(0), reverse_columns(NUM_CONTACT_COLUMNS),
+    contact_sums(nullptr), fastest(0.0), radius_excess(0.0), fastest_near(0.0), wall_speed(0.0),
+    last_virial{}, last_virial_step(-1),
     skin_warned(false), largest_overlap(0.0),
     capped_steps(0), next_cap_warning(FIRST_CAP_WARNING)
 {
