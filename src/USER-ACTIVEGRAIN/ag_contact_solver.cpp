@@ -227,6 +227,11 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   auto measure_velocities = [&] {
     for (std::size_t k = 0; k < size; ++k) velocity_[k] = relative_velocity(contacts_[island[k]]);
   };
+  // A contact's spring stiffens its movable bodies (a static body's stays 0: it does not move).
+  auto stiffen = [&](const Contact &c, double stiffness) {
+    for (int b : {c.body1, c.body2})
+      if (!bodies_[b].is_static()) body_stiffness_[b] += stiffness;
+  };
   bool plastic = false;
   for (int i : island) {
     Contact &c = contacts_[i];
@@ -261,17 +266,13 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       fastest_approach = std::max(fastest_approach, -un);
       if (loaded || (un < approaching && c.compression >= spring_offset(c))) {
         engaged = true;
-        const double stiffness = spring_stiffness(c);
-        body_stiffness_[c.body1] += stiffness;
-        body_stiffness_[c.body2] += stiffness;
+        stiffen(c, spring_stiffness(c));
         body_contacts_[c.body1] += loaded;
         body_contacts_[c.body2] += loaded;
       } else if (un < approaching) {
         to_contact = std::min(to_contact, (spring_offset(c) - c.compression) / -un);
       }
     }
-    for (int b : island_bodies_)
-      if (bodies_[b].is_static()) body_stiffness_[b] = 0.0;
     if (!any_loaded && fastest_approach <= settled) return substeps;
     if (!engaged) {
       if (!std::isfinite(to_contact)) return substeps;    // all unloaded, none approaching
@@ -285,7 +286,6 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
     if (substeps == settings.max_substeps) return -1;
     ++substeps;
 
-    // (A static body's stiffness is left 0 after the classification above.)
     auto substep = [&] {
       double omega2 = 0.0;
       for (int i : island) {
@@ -305,8 +305,7 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
       if (c.unloading || e == 0.0 || e == 1.0 || force <= 0.0) continue;
       if (dot(velocity_[k], c.n) + kTurnLookahead * c.knn * force * dtau < 0.0) continue;
       const double extra = 1.0 / std::max(e * e, kTurnStiffestE * kTurnStiffestE) - 1.0;
-      if (!bodies_[c.body1].is_static()) body_stiffness_[c.body1] += extra;
-      if (!bodies_[c.body2].is_static()) body_stiffness_[c.body2] += extra;
+      stiffen(c, extra);
       turning = true;
     }
     if (turning) dtau = substep();

@@ -275,11 +275,13 @@ void PairGranImpulse::grow_buffers()
   if (nall > 0) memset(&contact_sums[0][0], 0, sizeof(double) * NUM_CONTACT_COLUMNS * nall);
   atom_body.assign(nall, -1);
   spin_speed.resize(nall);
-  for (int i = 0; i < nall; i++) spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
   fastest = radius_excess = wall_speed = fastest_near = 0.0;
-  for (int i = 0; i < nall; i++) fastest_near = std::max(fastest_near, norm(Vec3(atom->v[i])) + spin_speed[i]);
-  for (int i = 0; i < atom->nlocal; i++) {
-    fastest = std::max(fastest, norm(Vec3(atom->v[i])) + spin_speed[i]);
+  for (int i = 0; i < nall; i++) {
+    spin_speed[i] = norm(Vec3(atom->omega[i])) * atom->radius[i];
+    const double speed = norm(Vec3(atom->v[i])) + spin_speed[i];
+    fastest_near = std::max(fastest_near, speed);
+    if (i >= atom->nlocal) continue;
+    fastest = std::max(fastest, speed);
     radius_excess = std::max(radius_excess, atom->radius[i] - maxrad[atom->type[i]]);
   }
 }
