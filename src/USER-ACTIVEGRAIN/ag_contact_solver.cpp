@@ -20,15 +20,15 @@ int ContactSolver::add_body(const RigidBodyState &body)
 
 int ContactSolver::add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
                                const ContactMaterial &material, double min_separation,
-                               const Vec3 &gain)
+                               const Vec3 &gain, double time)
 {
   return add_contact_arms(body1, body2, point - bodies_[body1].com, point - bodies_[body2].com, n,
-                          material, min_separation, gain);
+                          material, min_separation, gain, time);
 }
 
 int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2,
                                     const Vec3 &n, const ContactMaterial &material,
-                                    double min_separation, const Vec3 &gain)
+                                    double min_separation, const Vec3 &gain, double time)
 {
   Contact c;
   c.body1 = body1;
@@ -39,6 +39,7 @@ int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const 
   c.material = material;
   c.min_separation = min_separation;
   c.gain = gain;
+  c.time = time;
   contacts_.push_back(c);
   return num_contacts() - 1;
 }
@@ -108,6 +109,14 @@ constexpr double kTurnLookahead = 2.0;
 // ... with at most the unloading stiffness of this restitution: below it the unloading returns
 // too little (e^2 of the work) to be worth 2 / e sub-steps.
 constexpr double kTurnStiffestE = 0.05;
+// An island takes at most this many impacts in order within a step; contacts that would close
+// after them wait for the next step (rods bouncing between base and lid with little play).
+constexpr int kMaxImpactsInOrder = 64;
+// A contact is resting, not an impact, if it approaches at most this many times as fast as the
+// forces of the step (its gain) make it: a rod lying on a plate under gravity. When such a
+// contact closes within the step is set by nanometres of gap, so it counts as touching from
+// the start (else a resting rod, its ends met in turn, would rock for ever).
+constexpr double kRestingGain = 2.0;
 
 }    // namespace
 
@@ -122,7 +131,12 @@ void ContactSolver::prepare()
     ++contacts_of_body_[c.body2];
   }
   auto alone = [&](int body) { return bodies_[body].is_static() || contacts_of_body_[body] == 1; };
-  for (Contact &c : contacts_) c.isolated = alone(c.body1) && alone(c.body2);
+  for (Contact &c : contacts_) {
+    c.isolated = alone(c.body1) && alone(c.body2);
+    if (c.isolated) continue;
+    c.knn = dot(c.n, c.K * c.n);
+    c.tangential = TangentialStep(c.K, c.n);
+  }
   find_islands();
 }
 
@@ -164,6 +178,7 @@ void ContactSolver::solve_isolated()
       const Vec3 u = relative_velocity(c);
       const double target = std::max(c.material.e * std::max(0.0, -dot(u, c.n)), c.min_separation);
       c.impulse = contact_law_impulse(c.K, u, c.n, c.material, target);
+      c.late = c.impulse * c.time;
       apply(c, c.impulse);
     }
 }
@@ -236,8 +251,6 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   for (int i : island) {
     Contact &c = contacts_[i];
     plastic = plastic || c.material.e == 0.0;
-    c.knn = dot(c.n, c.K * c.n);
-    c.tangential = TangentialStep(c.K, c.n);
     c.compression = c.peak = 0.0;
     c.unloading = false;
   }
@@ -349,6 +362,93 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
   }
 }
 
+// The island's contacts in the order they close within the step (see the class comment), resting
+// ones from the start (kRestingGain). An impact takes the contacts that close within the window
+// of the first; it leaves them touching,
+// and settled if they approach slower than its settled approach (they wait for the next step,
+// as do contacts that close after the step). Each contact's late impulse is the sum of its
+// impulses times when they acted.
+int ContactSolver::solve_island(const std::vector<int> &island, const Settings &settings)
+{
+  const std::size_t size = island.size();
+  approach_.resize(size);
+  auto measure_approaches = [&] {
+    for (std::size_t k = 0; k < size; ++k) {
+      const Contact &c = contacts_[island[k]];
+      approach_[k] = -dot(relative_velocity(c), c.n);
+    }
+  };
+  auto closing_time = [&](std::size_t k) {
+    const Contact &c = contacts_[island[k]];
+    return approach_[k] <= kRestingGain * std::fabs(dot(c.gain, c.n)) ? 0.0 : c.time;
+  };
+  double first = 0.0, last = 0.0;
+  if (std::isfinite(settings.window)) {
+    measure_approaches();
+    first = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < size; ++k) {
+      first = std::min(first, closing_time(k));
+      last = std::max(last, closing_time(k));
+    }
+  }
+  if (last - first <= settings.window) {
+    collect_bodies(island);
+    const int substeps = compliant_impact(island, settings);
+    for (int i : island) contacts_[i].late = contacts_[i].impulse * contacts_[i].time;
+    return substeps;
+  }
+  gap_.resize(size);
+  impulse_before_.resize(size);
+  floor_.assign(size, 0.0);
+  for (std::size_t k = 0; k < size; ++k) {
+    gap_[k] = std::max(0.0, approach_[k]) * closing_time(k);
+    contacts_[island[k]].late = Vec3();
+  }
+  // Whether contact k closes within the window from now (gap_ at now).
+  auto in_impact = [&](std::size_t k) {
+    return approach_[k] > floor_[k] && gap_[k] <= approach_[k] * settings.window;
+  };
+  int substeps = 0;
+  double now = 0.0;
+  for (int impacts = 0; impacts < kMaxImpactsInOrder; ++impacts) {
+    double next = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < size; ++k)
+      if (approach_[k] > floor_[k]) next = std::min(next, std::max(0.0, gap_[k]) / approach_[k]);
+    if (!(now + next <= settings.step)) break;
+    now += next;
+    wave_.clear();
+    double fastest = 0.0;
+    for (std::size_t k = 0; k < size; ++k) {
+      gap_[k] -= approach_[k] * next;
+      if (!in_impact(k)) continue;
+      wave_.push_back(island[k]);
+      impulse_before_[k] = contacts_[island[k]].impulse;
+      fastest = std::max(fastest, approach_[k]);
+    }
+    if (wave_.size() == 1) {
+      Contact &c = contacts_[wave_[0]];
+      const Vec3 u = relative_velocity(c);
+      const Vec3 J = contact_law_impulse(c.K, u, c.n, c.material, c.material.e * std::max(0.0, -dot(u, c.n)));
+      c.impulse += J;
+      apply(c, J);
+    } else {
+      collect_bodies(wave_);
+      const int s = compliant_impact(wave_, settings);
+      if (s < 0) return -1;
+      substeps = std::max(substeps, s);
+    }
+    for (std::size_t k = 0; k < size; ++k) {
+      if (!in_impact(k)) continue;
+      Contact &c = contacts_[island[k]];
+      c.late += (c.impulse - impulse_before_[k]) * (now + std::max(0.0, gap_[k]) / approach_[k]);
+      gap_[k] = 0.0;
+      floor_[k] = kSettledApproach * fastest;
+    }
+    measure_approaches();
+  }
+  return substeps;
+}
+
 // Overlapping contacts must open at least at their minimum separation velocity: pushes where one
 // opens slower, with Stronge's friction for their normal impulse (a body resting on a plate
 // under gravity sits on these pushes), each shared among the pushed contacts of its bodies (a
@@ -356,6 +456,8 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
 double ContactSolver::separate_overlaps(const std::vector<int> &island)
 {
   double largest = 0.0;
+  step_impulse_.resize(island.size());
+  velocity_.resize(island.size());
   for (int sweep = 0; sweep < kOverlapSweeps; ++sweep) {
     for (int b : island_bodies_) body_contacts_[b] = 0;
     largest = 0.0;
@@ -397,8 +499,8 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   in_island_.assign(bodies_.size(), 0);
   for (int k = 0; k < num_islands_; ++k) {
     const std::vector<int> &island = islands_[k];
+    const int substeps = solve_island(island, settings);
     collect_bodies(island);
-    const int substeps = compliant_impact(island, settings);
     const double shortfall = separate_overlaps(island);
     result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);
     result.shortfall = std::max(result.shortfall, shortfall);

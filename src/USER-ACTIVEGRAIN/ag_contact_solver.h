@@ -23,6 +23,11 @@
 //     does not enter, only the sub-step size, which resolution sets; it shrinks to the stiff
 //     unloading's before a spring turns, so the rebound converges at second order;
 //   - springs with hysteresis and Coulomb friction never add energy.
+// Within a time step the island's contacts meet in the order they close (Settings::window): the
+// contacts that close first make one compliant impact, and the others meet the bodies as it
+// left them, at the times their gaps close at the new velocities, or not in this step. Without
+// that, contacts that close at different moments of a long step would share one impact, and a
+// rod landing tail first and nose later would be stopped at both ends at once.
 // Overlapping contacts must then open at least at their minimum separation velocity: pushes with
 // Stronge's friction, Jacobi again, after the impact (the overlap correction, the only energy
 // source; a body resting on a plate under gravity sits on it).
@@ -33,6 +38,7 @@
 
 #include "ag_impulse.h"
 
+#include <limits>
 #include <vector>
 
 namespace ActiveGrain {
@@ -49,10 +55,12 @@ class ContactSolver {
     // between the time of the bodies' velocities and the moment it closes: the law acts on the
     // relative velocity at that moment.
     Vec3 gain;
+    double time = 0.0;              // when within the step it closes (0: touching at the start)
     // Filled by solve():
     Mat3 K;
     bool isolated = false;          // the only contact of both its (movable) bodies
     Vec3 impulse;                   // on body 2 (minus on body 1)
+    Vec3 late;                      // the sum of impulse times when in the step it acted
     // The compliant impact's state: the spring's compression, its largest compression, and
     // whether it unloads.
     TangentialStep tangential;
@@ -62,6 +70,10 @@ class ContactSolver {
   struct Settings {
     int resolution = 150;    // sub-steps per half oscillation of the stiffest engaged contact
     int max_substeps = 1000000;    // per island; then the island's impact stops where it is
+    // Island contacts that close within window of the first are one compliant impact; the rest
+    // follow in order. Infinite: all contacts of an island are one impact, whenever they close.
+    double window = std::numeric_limits<double>::infinity();
+    double step = std::numeric_limits<double>::infinity();    // contacts closing later wait
   };
   struct Result {
     int substeps = 0;         // most sub-steps an island's impact needed (0: none coupled)
@@ -75,11 +87,11 @@ class ContactSolver {
   // Contact at a point (lever arms from the bodies' centres of mass).
   int add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
                   const ContactMaterial &material, double min_separation = 0.0,
-                  const Vec3 &gain = Vec3());
+                  const Vec3 &gain = Vec3(), double time = 0.0);
   // Contact with explicit lever arms (periodic images: the caller applies the minimum image).
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
                        const ContactMaterial &material, double min_separation = 0.0,
-                       const Vec3 &gain = Vec3());
+                       const Vec3 &gain = Vec3(), double time = 0.0);
 
   // Isolated contacts by Stronge's law, then each island by a compliant impact. Updates the
   // bodies' velocities.
@@ -97,6 +109,7 @@ class ContactSolver {
   void prepare();
   void solve_isolated();
   void find_islands();
+  int solve_island(const std::vector<int> &island, const Settings &settings);    // -1: capped
   // Both after collect_bodies(island).
   int compliant_impact(const std::vector<int> &island, const Settings &settings);    // -1: capped
   double separate_overlaps(const std::vector<int> &island);    // returns the shortfall left
@@ -123,6 +136,11 @@ class ContactSolver {
   std::vector<int> island_bodies_;           // the island's bodies, each once
   std::vector<char> in_island_;              // per body: scratch of collect_bodies
   std::vector<Vec3> velocity_;               // relative velocity per island contact
+  std::vector<double> gap_;                  // per island contact, at the latest impact's time
+  std::vector<double> approach_;             // ... its approach speed
+  std::vector<double> floor_;                // ... the approach below which it waits
+  std::vector<Vec3> impulse_before_;         // ... its impulse before the present impact
+  std::vector<int> wave_;                    // the island contacts of one impact
 };
 
 }    // namespace ActiveGrain

@@ -45,6 +45,9 @@ static constexpr int MIN_RESOLUTION = 20;
 static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 // The near pairs (NearPairs) are those within this fraction of the neighbor skin.
 static constexpr double NEAR_MARGIN = 0.25;
+// Restart files: the settings' format, stored negative (the first format, without the window,
+// began with the resolution).
+static constexpr int RESTART_FORMAT = -2;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(Order::SHUFFLE), restitution(nullptr), friction(nullptr),
@@ -95,7 +98,7 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse]; every setting
+/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step]; every setting
    not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
@@ -109,7 +112,12 @@ void PairGranImpulse::settings(int narg, char **arg)
       error->all(FLERR, "{}: keyword {} is gone: contacts that share a body are solved as one "
                  "compliant impact, whose only setting is resolution", STYLE, key);
     if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", STYLE, key);
-    if (key == "resolution") {
+    if (key == "window") {
+      const std::string value = arg[iarg + 1];
+      solver_settings.window =
+          value == "step" ? ActiveGrain::ContactSolver::Settings().window : utils::numeric(FLERR, value, false, lmp);
+      if (solver_settings.window < 0.0) error->all(FLERR, "{}: window must be >= 0 or step", STYLE);
+    } else if (key == "resolution") {
       solver_settings.resolution = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (solver_settings.resolution < MIN_RESOLUTION)
         error->all(FLERR, "{}: resolution must be >= {}", STYLE, MIN_RESOLUTION);
@@ -382,7 +390,8 @@ void PairGranImpulse::add_found_contacts()
   else if (order == Order::TAG) std::sort(found.begin(), found.end(), ascending);
   else std::sort(found.begin(), found.end(), descending);
   for (const FoundContact &c : found) {
-    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation, c.gain);
+    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation, c.gain,
+                            c.atoms.time_to_contact);
     atom_contacts.push_back(c.atoms);
   }
 }
@@ -433,27 +442,28 @@ void PairGranImpulse::gather_wall_contacts()
 }
 
 // Each contact's impulse as a force J / dt (velocity Verlet applies half of it at this step's end
-// and half at the next step's start, before the atoms move), and as a late impulse J t_c: a
-// contact that closes a time t_c after the step's start has its atoms fly freely until then, so
-// they move J t_c / m less in the next step than the force alone would move them.
+// and half at the next step's start, before the atoms move), and as a late impulse J t_c (the
+// solver's sum of impulses times when they acted): a contact that closes a time t_c after the
+// step's start has its atoms fly freely until then, so they move J t_c / m less in the next step
+// than the force alone would move them.
 void PairGranImpulse::distribute_impulses()
 {
   const double to_force = 1.0 / update->dt;
   double **x = atom->x;
-  auto push = [&](int i, const Vec3 &J, const Vec3 &point, double time_to_contact) {
+  auto push = [&](int i, const Vec3 &J, const Vec3 &point, const Vec3 &late) {
     const Vec3 arm = point - Vec3(x[i]);
     double *sums = contact_sums[i];
     (J * to_force).add_to(sums + FORCE);
     cross(arm, J * to_force).add_to(sums + TORQUE);
-    if (time_to_contact == 0.0) return;
-    (J * time_to_contact).add_to(sums + LATE);
-    cross(arm, J * time_to_contact).add_to(sums + LATE_ANGULAR);
+    if (norm2(late) == 0.0) return;
+    late.add_to(sums + LATE);
+    cross(arm, late).add_to(sums + LATE_ANGULAR);
   };
   for (int c = 0; c < solver.num_contacts(); c++) {
     const AtomContact &ac = atom_contacts[c];
-    const Vec3 &J = solver.impulse(c);
-    push(ac.atom2, J, ac.point, ac.time_to_contact);
-    if (ac.atom1 >= 0) push(ac.atom1, -J, ac.point, ac.time_to_contact);
+    const Vec3 &J = solver.impulse(c), &late = solver.contact(c).late;
+    push(ac.atom2, J, ac.point, late);
+    if (ac.atom1 >= 0) push(ac.atom1, -J, ac.point, -late);
     else ac.wall->add_delivered_impulse(ac.surface, J, ac.approach);
   }
 }
@@ -605,6 +615,7 @@ void PairGranImpulse::compute(int eflag, int vflag)
   gather_pair_contacts();
   gather_wall_contacts();
   add_found_contacts();
+  solver_settings.step = update->dt;
   record_solve(solver.solve(solver_settings));
   distribute_impulses();
   tally_energy();
@@ -744,12 +755,16 @@ void PairGranImpulse::read_restart(FILE *fp)
     }
 }
 
+// Settings in restart files: a negative format number first (files of the first format begin with
+// the resolution, which is positive), then resolution, beta, order and the window.
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
   const int order_code = static_cast<int>(order);
+  fwrite(&RESTART_FORMAT, sizeof(int), 1, fp);
   fwrite(&solver_settings.resolution, sizeof(int), 1, fp);
   fwrite(&beta, sizeof(double), 1, fp);
   fwrite(&order_code, sizeof(int), 1, fp);
+  fwrite(&solver_settings.window, sizeof(double), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
@@ -757,13 +772,19 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
   int order_code = 0;
   solver_settings = ActiveGrain::ContactSolver::Settings();
   if (comm->me == 0) {
-    utils::sfread(FLERR, &solver_settings.resolution, sizeof(int), 1, fp, nullptr, error);
+    int format = 0;
+    utils::sfread(FLERR, &format, sizeof(int), 1, fp, nullptr, error);
+    if (format > 0) solver_settings.resolution = format;    // the first format: no window
+    else utils::sfread(FLERR, &solver_settings.resolution, sizeof(int), 1, fp, nullptr, error);
+    if (format < RESTART_FORMAT) error->one(FLERR, "{}: restart file of a newer format ({})", STYLE, -format);
     utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
+    if (format < 0) utils::sfread(FLERR, &solver_settings.window, sizeof(double), 1, fp, nullptr, error);
   }
   MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
+  MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
   order = static_cast<Order>(order_code);
 }
 
