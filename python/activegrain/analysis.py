@@ -365,6 +365,45 @@ def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
     return find_layers(frame, geometry, 1, halfwidth=halfwidth, gap=gap, window=window)[0]
 
 
+def layer_drive(frame, geometry, layer=None, halfwidth=None):
+    """How fast a rod layer moves along its direction, and how fast it drives the beads in it.
+
+    ``layer``: a :class:`LayerSides` (default: the densest layer). Rods and beads whose centres
+    lie within ``halfwidth`` (default one rod length L) of the layer; their mean velocity
+    component along the layer's direction, in the frame's length units per time. The continuum
+    theory's bead current is alpha rho P and its rods move at u0 P (docs/continuum.rst), so
+    ``alpha`` = bead speed / |<p>| and ``u`` = rod speed / |<p>|, with |<p>| the layer's
+    polar order. Needs a dump with velocities.
+    """
+    layer = layer or layer_sides(frame, geometry)
+    rods = frame.rods()
+    xy, _, vb = frame.beads()
+    if vb is None or rods.velocity is None:
+        raise ValueError("layer_drive: the dump has no velocities")
+    L = float(np.median(rods.length))
+    coord = layer.coord
+    lo, hi = geometry.coordinate_range(coord)
+    period = hi - lo
+    reach = (halfwidth or L) / geometry.length_per_unit(coord)
+
+    def near(points):
+        d = geometry.coordinate(points, coord) - layer.position
+        if geometry.is_periodic(coord):
+            d -= period * np.round(d / period)
+        return np.abs(d) <= reach
+
+    def forward(points, velocities):
+        direction = geometry.tangent(points) if coord == "theta" else np.eye(2)["xy".index(coord)]
+        return layer.direction * np.sum(velocities * direction, axis=-1)
+
+    in_layer, members = near(xy), near(rods.centre)
+    beads = float(np.mean(forward(xy[in_layer], vb[in_layer]))) if in_layer.any() else float("nan")
+    rod_speed = float(np.mean(forward(rods.centre[members], rods.velocity[members])))
+    order = layer.alignment
+    return {"beads": beads, "rods": rod_speed, "alignment": order, "alpha": beads / order,
+            "u": rod_speed / order, "beads_in_layer": int(in_layer.sum()), "rods_in_layer": int(members.sum())}
+
+
 def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="beads", spacing=None):
     """Area-fraction profile against the distance ahead of a rod layer.
 

@@ -294,3 +294,24 @@ def test_still_dilute_beads_are_not_jammed():
     geom = geometry_from_box(fr.box)
     res = A.classify_phase(S.displaced(fr, 0.01, seed=2), geom, previous=fr)
     assert res.phase == "isotropic" and res.observables["phi_total"] < 0.7
+
+
+def test_layer_drive_measures_the_beads_and_rods_it_moves():
+    # A width-spanning row at x = 30 in a 124 x 31 channel, rods tilted +-60 degrees in turn
+    # (polar order cos 60 = 0.5 along +x); beads within a rod length of it move at 2 along x,
+    # the others stand still; the rods move at 3.
+    box = Box((0.0, 0.0, 0.0), (124.0, 31.0, 1.12), (True, False, False))
+    angle = np.radians(60.0)
+    axes = np.array([[np.cos(angle), (-1) ** k * np.sin(angle)] for k in range(8)])
+    centres = np.column_stack([np.full(8, 30.0), np.linspace(2.0, 29.0, 8)])
+    beads = S.remove_overlaps(S.lattice_beads(0, 124, 0, 31, 1.5), box, centres, axes)
+    bead_vel = np.where(np.abs(beads[:, :1] - 30.0) <= 4.5, [2.0, 0.7], [0.0, 0.0])
+    fr = S.make_frame(box, beads, 0.5, centres, axes, bead_vel=bead_vel, rod_vel=np.tile([3.0, 0.0], (8, 1)))
+    drive = A.layer_drive(fr, geometry_from_box(box))
+    assert drive["alignment"] == pytest.approx(0.5, rel=1e-9)
+    assert drive["beads"] == pytest.approx(2.0, rel=1e-12)
+    assert drive["alpha"] == pytest.approx(4.0, rel=1e-9)
+    assert drive["u"] == pytest.approx(6.0, rel=1e-9)
+    assert drive["rods_in_layer"] == 8 and drive["beads_in_layer"] > 50
+    with pytest.raises(ValueError):
+        A.layer_drive(S.make_frame(box, beads, 0.5, centres, axes), geometry_from_box(box))
