@@ -40,13 +40,14 @@ constexpr const char *DECK_ROUGHNESS = "0.06 5e-6 12345";
 
 // The styles of in.single-rod (paper rods and plates, with the given roughness), for atoms read
 // back from a data or restart file; the rod template is written to mol_file.
-inline std::string single_rod_styles(const std::string &mol_file, const std::string &roughness)
+inline std::string single_rod_styles(const std::string &mol_file, const std::string &roughness,
+                                     bool pair_style = true)
 {
   return "comm_modify vel yes cutoff 6e-3\n"
          "rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3 spheres 9 density 8500 types 1 2 3 "
          "file " + mol_file + "\n"
-         "neigh_modify exclude molecule/intra all\n"
-         "pair_style gran/impulse window 5e-6\npair_coeff * * 0.3 0.05\n"
+         "neigh_modify exclude molecule/intra all\n" +
+         std::string(pair_style ? "pair_style gran/impulse window 5e-6\npair_coeff * * 0.3 0.05\n" : "") +
          "fix rods all rigid/rod molecule mol rod\n"
          "fix plates all wall/impulse zlo 0.0 gap 1.12e-3 lid moving vibrate 4.0e-5 200 0.0 e 0.1 mu 0.03 "
          "rough " + roughness + "\n"

@@ -158,6 +158,10 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse order random").find("order must be"), std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse window -1e-6").find("Pair gran/impulse: window must be"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse window").find("missing value after keyword window"),
+            std::string::npos);
   command(PAIR);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),
             std::string::npos);

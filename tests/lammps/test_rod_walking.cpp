@@ -129,11 +129,12 @@ TEST_F(RodWalkingTest, RestartContinuesTheWalkExactly)
           "write_restart " + restart + "\nrun 1000 post no");
   const double x = value("xcm(all,x)"), y = value("xcm(all,y)"), vx = value("vcm(all,x)");
 
-  // The styles again after read_restart (templates and rigid fixes are not in restart files).
+  // The styles again after read_restart (templates and rigid fixes are not in restart files; the
+  // pair style and its settings, the window of impacts in order among them, are).
   fresh_lammps();
   command("atom_modify map array\nread_restart " + restart + "\n"
           "fix molecule_ids all property/atom mol ghost yes\n" +
-          single_rod_styles("out/rod_test_restart2.mol", DECK_ROUGHNESS) + "timestep 5e-5\nrun 1000 post no");
+          single_rod_styles("out/rod_test_restart2.mol", DECK_ROUGHNESS, false) + "timestep 5e-5\nrun 1000 post no");
   EXPECT_NEAR(value("xcm(all,x)"), x, 1e-12);
   EXPECT_NEAR(value("xcm(all,y)"), y, 1e-12);
   EXPECT_NEAR(value("vcm(all,x)"), vx, 1e-12);
