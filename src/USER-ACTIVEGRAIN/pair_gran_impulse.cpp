@@ -98,8 +98,8 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step]; every setting
-   not given takes its default */
+/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step];
+   every setting not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
   solver_settings = ActiveGrain::ContactSolver::Settings();
