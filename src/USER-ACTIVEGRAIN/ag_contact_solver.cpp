@@ -114,8 +114,8 @@ constexpr double kTurnStiffestE = 0.05;
 constexpr int kMaxImpactsInOrder = 64;
 // A contact is resting, not an impact, if it approaches at most this many times as fast as the
 // forces of the step (its gain) make it: a rod lying on a plate under gravity. When such a
-// contact closes within the step is set by nanometres of gap, so it counts as touching from
-// the start (else a resting rod, its ends met in turn, would rock for ever).
+// contact closes within the step is set by nanometres of gap, so its place in the order means
+// nothing: it counts as touching from the start.
 constexpr double kRestingGain = 2.0;
 
 }    // namespace
