@@ -171,13 +171,19 @@ void ContactSolver::find_islands()
   }
 }
 
+// Stronge's impact of a contact alone, leaving at least at min_separation.
+Vec3 ContactSolver::impact_alone(const Contact &c, double min_separation) const
+{
+  const Vec3 u = relative_velocity(c);
+  const double target = std::max(c.material.e * std::max(0.0, -dot(u, c.n)), min_separation);
+  return contact_law_impulse(c.K, u, c.n, c.material, target);
+}
+
 void ContactSolver::solve_isolated()
 {
   for (Contact &c : contacts_)
     if (c.isolated) {
-      const Vec3 u = relative_velocity(c);
-      const double target = std::max(c.material.e * std::max(0.0, -dot(u, c.n)), c.min_separation);
-      c.impulse = contact_law_impulse(c.K, u, c.n, c.material, target);
+      c.impulse = impact_alone(c, c.min_separation);
       c.late = c.impulse * c.time;
       apply(c, c.impulse);
     }
@@ -364,10 +370,9 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
 
 // The island's contacts in the order they close within the step (see the class comment), resting
 // ones from the start (kRestingGain). An impact takes the contacts that close within the window
-// of the first; it leaves them touching,
-// and settled if they approach slower than its settled approach (they wait for the next step,
-// as do contacts that close after the step). Each contact's late impulse is the sum of its
-// impulses times when they acted.
+// of the first; it leaves them touching, and settled if they approach slower than its settled
+// approach (they wait for the next step, as do contacts that close after the step). Each
+// contact's late impulse is the sum of its impulses times when they acted.
 int ContactSolver::solve_island(const std::vector<int> &island, const Settings &settings)
 {
   const std::size_t size = island.size();
@@ -427,8 +432,7 @@ int ContactSolver::solve_island(const std::vector<int> &island, const Settings &
     }
     if (wave_.size() == 1) {
       Contact &c = contacts_[wave_[0]];
-      const Vec3 u = relative_velocity(c);
-      const Vec3 J = contact_law_impulse(c.K, u, c.n, c.material, c.material.e * std::max(0.0, -dot(u, c.n)));
+      const Vec3 J = impact_alone(c, 0.0);    // overlaps are opened after all impacts
       c.impulse += J;
       apply(c, J);
     } else {

@@ -115,6 +115,7 @@ class ContactSolver {
   double separate_overlaps(const std::vector<int> &island);    // returns the shortfall left
 
   Vec3 relative_velocity(const Contact &c) const;    // at the moment the contact closes
+  Vec3 impact_alone(const Contact &c, double min_separation) const;
   void apply(const Contact &c, const Vec3 &J);
   void collect_bodies(const std::vector<int> &island);
   void apply_all(const std::vector<int> &island);
