@@ -109,6 +109,13 @@ constexpr double kTurnLookahead = 2.0;
 // ... with at most the unloading stiffness of this restitution: below it the unloading returns
 // too little (e^2 of the work) to be worth 2 / e sub-steps.
 constexpr double kTurnStiffestE = 0.05;
+
+// What a loading spring close to its turn adds to its stiffness: up to its unloading's.
+double turning_extra(const ContactSolver::Contact &c)
+{
+  const double e = c.material.e;
+  return 1.0 / std::max(e * e, kTurnStiffestE * kTurnStiffestE) - 1.0;
+}
 // An island takes at most this many impacts in order within a step; contacts that would close
 // after them wait for the next step (rods bouncing between base and lid with little play).
 constexpr int kMaxImpactsInOrder = 64;
@@ -202,28 +209,47 @@ void ContactSolver::collect_bodies(const std::vector<int> &island)
   for (int b : island_bodies_) in_island_[b] = 0;
 }
 
-// The impulses of one Jacobi step (step_impulse_, per island contact): summed per body first, so
-// that each body's inverse inertia is applied once. The sums are zero between calls.
-void ContactSolver::apply_all(const std::vector<int> &island)
+// One Jacobi step's impulses (step_impulse_) of the listed island contacts, in increasing order:
+// added to the contacts and summed per movable body, so that each body's inverse inertia is
+// applied once (move_bodies). The sums are zero between steps.
+void ContactSolver::push(const std::vector<int> &island, const std::vector<int> &pushed)
 {
-  for (std::size_t k = 0; k < island.size(); ++k) {
+  auto add = [&](int b, const Vec3 &J, const Vec3 &r) {
+    if (bodies_[b].is_static()) return;
+    body_momentum_[b] += J;
+    body_angular_[b] += cross(r, J);
+    if (!moved_[b]) {
+      moved_[b] = 1;
+      moved_bodies_.push_back(b);
+    }
+  };
+  for (int k : pushed) {
     Contact &c = contacts_[island[k]];
     const Vec3 &J = step_impulse_[k];
     c.impulse += J;
-    body_momentum_[c.body1] -= J;
-    body_angular_[c.body1] -= cross(c.r1, J);
-    body_momentum_[c.body2] += J;
-    body_angular_[c.body2] += cross(c.r2, J);
+    add(c.body1, -J, c.r1);
+    add(c.body2, J, c.r2);
   }
-  for (int b : island_bodies_) {
+}
+
+// The pushed bodies take their summed impulses; they stay marked as moved until forget_moved().
+void ContactSolver::move_bodies()
+{
+  for (int b : moved_bodies_) {
     RigidBodyState &body = bodies_[b];
-    if (!body.is_static()) {
-      body.v += body_momentum_[b] * body.inv_mass;
-      body.omega += body.inv_inertia * body_angular_[b];
-    }
+    body.v += body_momentum_[b] * body.inv_mass;
+    body.omega += body.inv_inertia * body_angular_[b];
     body_momentum_[b] = body_angular_[b] = Vec3();
   }
 }
+
+void ContactSolver::forget_moved()
+{
+  for (int b : moved_bodies_) moved_[b] = 0;
+  moved_bodies_.clear();
+}
+
+bool ContactSolver::moved(const Contact &c) const { return moved_[c.body1] || moved_[c.body2]; }
 
 int ContactSolver::share(const Contact &c) const
 {
@@ -270,27 +296,46 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
     settled = std::max(settled, -kSettledApproach * dot(velocity_[k], contacts_[island[k]].n));
   int substeps = 0;
   double previous_dtau = 0.0;    // the last drift: a kick spans half of it and half the next
-  while (true) {
-    for (int b : island_bodies_) {
-      body_stiffness_[b] = 0.0;
-      body_contacts_[b] = 0;
+  // The sub-step follows from which springs are engaged, loaded and turning; it is computed again
+  // only when one of them changes (most sub-steps keep all three).
+  engaged_stiffness_.assign(size, -1.0);
+  force_.resize(size);
+  loaded_.assign(size, 0);
+  turning_.assign(size, 0);
+  double engaged_dtau = 0.0, turning_dtau = 0.0;
+  auto sum_body_stiffness = [&](bool with_turning) {
+    for (int b : island_bodies_) body_stiffness_[b] = 0.0;
+    for (std::size_t k = 0; k < size; ++k)
+      if (engaged_stiffness_[k] > 0.0) stiffen(contacts_[island[k]], engaged_stiffness_[k]);
+    for (std::size_t k = 0; with_turning && k < size; ++k)
+      if (turning_[k]) stiffen(contacts_[island[k]], turning_extra(contacts_[island[k]]));
+    double omega2 = 0.0;
+    for (int i : island) {
+      const Contact &c = contacts_[i];
+      omega2 = std::max(omega2, c.knn * std::max(body_stiffness_[c.body1], body_stiffness_[c.body2]));
     }
-    bool engaged = false, any_loaded = false;
+    return phase_per_substep / std::sqrt(omega2);
+  };
+  while (true) {
+    bool engaged = false, any_loaded = false, changed = false;
     double to_contact = std::numeric_limits<double>::infinity(), fastest_approach = 0.0;
     for (std::size_t k = 0; k < size; ++k) {
       const Contact &c = contacts_[island[k]];
       const double un = dot(velocity_[k], c.n);
-      const bool loaded = spring_force(c) > 0.0;
+      force_[k] = spring_force(c);
+      const bool loaded = force_[k] > 0.0;
       any_loaded = any_loaded || loaded;
       fastest_approach = std::max(fastest_approach, -un);
+      double stiffness = 0.0;
       if (loaded || (un < approaching && c.compression >= spring_offset(c))) {
         engaged = true;
-        stiffen(c, spring_stiffness(c));
-        body_contacts_[c.body1] += loaded;
-        body_contacts_[c.body2] += loaded;
+        stiffness = spring_stiffness(c);
       } else if (un < approaching) {
         to_contact = std::min(to_contact, (spring_offset(c) - c.compression) / -un);
       }
+      changed = changed || stiffness != engaged_stiffness_[k] || loaded != loaded_[k];
+      engaged_stiffness_[k] = stiffness;
+      loaded_[k] = loaded;
     }
     if (!any_loaded && fastest_approach <= settled) return substeps;
     if (!engaged) {
@@ -305,66 +350,71 @@ int ContactSolver::compliant_impact(const std::vector<int> &island, const Settin
     if (substeps == settings.max_substeps) return -1;
     ++substeps;
 
-    auto substep = [&] {
-      double omega2 = 0.0;
-      for (int i : island) {
-        const Contact &c = contacts_[i];
-        omega2 = std::max(omega2, c.knn * std::max(body_stiffness_[c.body1], body_stiffness_[c.body2]));
+    if (changed) {
+      for (int b : island_bodies_) body_contacts_[b] = 0;
+      for (std::size_t k = 0; k < size; ++k) {
+        body_contacts_[contacts_[island[k]].body1] += loaded_[k];
+        body_contacts_[contacts_[island[k]].body2] += loaded_[k];
       }
-      return phase_per_substep / std::sqrt(omega2);
-    };
-    double dtau = substep();
+      engaged_dtau = sum_body_stiffness(false);
+    }
     // A loading spring close to its turn already counts with its unloading stiffness, so that
     // the sub-steps have shrunk to the unloading's when it turns (else the drift across the turn
     // skips most of a stiff unloading: an error of order pi / resolution in the rebound).
-    bool turning = false;
+    bool turning = false, turning_changed = false;
     for (std::size_t k = 0; k < size; ++k) {
       const Contact &c = contacts_[island[k]];
-      const double e = c.material.e, force = spring_force(c);
-      if (c.unloading || e == 0.0 || e == 1.0 || force <= 0.0) continue;
-      if (dot(velocity_[k], c.n) + kTurnLookahead * c.knn * force * dtau < 0.0) continue;
-      const double extra = 1.0 / std::max(e * e, kTurnStiffestE * kTurnStiffestE) - 1.0;
-      stiffen(c, extra);
-      turning = true;
+      const double e = c.material.e, force = force_[k];
+      const bool turns = !(c.unloading || e == 0.0 || e == 1.0 || force <= 0.0) &&
+          dot(velocity_[k], c.n) + kTurnLookahead * c.knn * force * engaged_dtau >= 0.0;
+      turning_changed = turning_changed || turns != static_cast<bool>(turning_[k]);
+      turning_[k] = turns;
+      turning = turning || turns;
     }
-    if (turning) dtau = substep();
+    if (turning && (changed || turning_changed)) turning_dtau = sum_body_stiffness(true);
+    const double dtau = turning ? turning_dtau : engaged_dtau;
     const double kick = 0.5 * (previous_dtau + dtau);
     previous_dtau = dtau;
 
+    pushed_.clear();
     for (std::size_t k = 0; k < size; ++k) {
       const Contact &c = contacts_[island[k]];
-      const double dp = spring_force(c) * kick;
-      step_impulse_[k] = Vec3();
+      const double dp = force_[k] * kick;
       if (dp <= 0.0) continue;
       bool stuck = false;
       Vec3 friction = c.tangential.friction(velocity_[k], c.material.mu, dp, stuck);
       if (stuck) friction *= 1.0 / share(c);
       step_impulse_[k] = c.n * dp + friction;
+      pushed_.push_back(static_cast<int>(k));
     }
-    apply_all(island);
+    push(island, pushed_);
+    move_bodies();
     // A plastic contact (e = 0) passes its peak within the kick that turns its normal velocity:
     // the kick's part after the peak would return energy it must not, so it is taken back (all
     // from the same state, as the kick).
-    bool plastic_turned = false;
-    for (std::size_t k = 0; plastic && k < size; ++k) {
+    taken_back_.clear();
+    for (std::size_t i = 0; plastic && i < pushed_.size(); ++i) {
+      const int k = pushed_[i];
       const Contact &c = contacts_[island[k]];
       const double before = dot(velocity_[k], c.n);
-      step_impulse_[k] = c.material.e == 0.0 && before < 0.0 ? step_impulse_[k] : Vec3();
-      if (norm2(step_impulse_[k]) == 0.0) continue;
+      if (c.material.e != 0.0 || before >= 0.0) continue;
       const double after = dot(relative_velocity(c), c.n);
-      step_impulse_[k] = after > 0.0 ? step_impulse_[k] * (-after / (after - before)) : Vec3();
-      plastic_turned = plastic_turned || after > 0.0;
+      if (after <= 0.0) continue;
+      step_impulse_[k] *= -after / (after - before);
+      taken_back_.push_back(k);
     }
-    if (plastic_turned) {
-      apply_all(island);
-      for (std::size_t k = 0; k < size; ++k)
-        if (norm2(step_impulse_[k]) > 0.0) contacts_[island[k]].unloading = true;
+    if (!taken_back_.empty()) {
+      push(island, taken_back_);
+      move_bodies();
+      for (int k : taken_back_) contacts_[island[k]].unloading = true;
     }
+    // Only the pushed bodies' contacts change velocity (most of a large island's do not).
     for (std::size_t k = 0; k < size; ++k) {
       Contact &c = contacts_[island[k]];
-      velocity_[k] = relative_velocity(c);
+      if (moved(c)) velocity_[k] = relative_velocity(c);
       compress(c, -dot(velocity_[k], c.n) * dtau);
     }
+    forget_moved();
   }
 }
 
@@ -465,23 +515,25 @@ double ContactSolver::separate_overlaps(const std::vector<int> &island)
   for (int sweep = 0; sweep < kOverlapSweeps; ++sweep) {
     for (int b : island_bodies_) body_contacts_[b] = 0;
     largest = 0.0;
+    pushed_.clear();
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Contact &c = contacts_[island[k]];
       velocity_[k] = relative_velocity(c);
       const double shortfall = c.min_separation - dot(velocity_[k], c.n);
-      step_impulse_[k] = Vec3();
       if (c.min_separation <= 0.0 || shortfall <= kOverlapTolerance * c.min_separation) continue;
       largest = std::max(largest, shortfall / c.min_separation);
       const double dp = shortfall / c.knn;
       bool stuck = false;
       step_impulse_[k] = c.n * dp + c.tangential.friction(velocity_[k], c.material.mu, dp, stuck);
+      pushed_.push_back(static_cast<int>(k));
       ++body_contacts_[c.body1];
       ++body_contacts_[c.body2];
     }
     if (largest == 0.0) break;
-    for (std::size_t k = 0; k < island.size(); ++k)
-      if (norm2(step_impulse_[k]) > 0.0) step_impulse_[k] *= 1.0 / share(contacts_[island[k]]);
-    apply_all(island);
+    for (int k : pushed_) step_impulse_[k] *= 1.0 / share(contacts_[island[k]]);
+    push(island, pushed_);
+    move_bodies();
+    forget_moved();
   }
   return largest;
 }
@@ -500,6 +552,7 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   body_contacts_.assign(bodies_.size(), 0);
   body_momentum_.assign(bodies_.size(), Vec3());
   body_angular_.assign(bodies_.size(), Vec3());
+  moved_.assign(bodies_.size(), 0);
   in_island_.assign(bodies_.size(), 0);
   for (int k = 0; k < num_islands_; ++k) {
     const std::vector<int> &island = islands_[k];

@@ -118,7 +118,12 @@ class ContactSolver {
   Vec3 impact_alone(const Contact &c, double min_separation) const;
   void apply(const Contact &c, const Vec3 &J);
   void collect_bodies(const std::vector<int> &island);
-  void apply_all(const std::vector<int> &island);
+  // A Jacobi step: push() the step impulses of some island contacts, then move_bodies(); the
+  // bodies stay marked as moved until forget_moved().
+  void push(const std::vector<int> &island, const std::vector<int> &pushed);
+  void move_bodies();
+  void forget_moved();
+  bool moved(const Contact &c) const;    // whether a body of the contact moved
   // Bodies' counts of the island's contacts in a Jacobi step: a share of each body's impulse.
   int share(const Contact &c) const;
 
@@ -132,8 +137,14 @@ class ContactSolver {
   // Scratch of the compliant impact, per body and per island contact.
   std::vector<double> body_stiffness_;       // engaged spring stiffness on the body
   std::vector<int> body_contacts_;           // loaded (or pushed) contacts on the body
+  std::vector<double> engaged_stiffness_;    // per island contact: its engaged spring's, or 0
+  std::vector<double> force_;                // ... its spring's force in the sub-step
+  std::vector<char> loaded_, turning_;       // ... whether loaded, and close to its turn
   std::vector<Vec3> step_impulse_;           // one Jacobi step's impulse per island contact
-  std::vector<Vec3> body_momentum_, body_angular_;    // ... summed per body (apply_all)
+  std::vector<int> pushed_, taken_back_;     // the island contacts a Jacobi step pushes
+  std::vector<Vec3> body_momentum_, body_angular_;    // ... summed per body (push)
+  std::vector<char> moved_;                  // per body: pushed since forget_moved()
+  std::vector<int> moved_bodies_;            // those bodies
   std::vector<int> island_bodies_;           // the island's bodies, each once
   std::vector<char> in_island_;              // per body: scratch of collect_bodies
   std::vector<Vec3> velocity_;               // relative velocity per island contact
