@@ -501,6 +501,42 @@ def bead_mobility(frame, previous):
     return float(np.sqrt(np.mean(np.sum(d * d, axis=1))) / (2 * np.median(r)))
 
 
+def layer_side_mobility(frame, previous, geometry, layer=None, window=5.0):
+    """How mobile the beads are on each side of a rod layer (the paper's Fig. S1).
+
+    The beads whose centres lie 1 to 1 + ``window`` rod lengths ahead of ``layer`` (default: the
+    densest layer of ``previous``) and as far behind it in ``previous``, and their displacements
+    to ``frame`` (matched by atom ID, minimum image). Returns per side the rms displacement less
+    the side's mean (its drift), and that drift along the layer's direction, both in median bead
+    diameters: ``ahead``, ``behind``, ``ahead_drift``, ``behind_drift``, and the beads counted
+    (``n_ahead``, ``n_behind``). For channels and boxes (layers across x or y)."""
+    layer = layer or layer_sides(previous, geometry)
+    if layer.coord not in ("x", "y"):
+        raise ValueError("layer_side_mobility: only for layers across x or y")
+    ids, prev_ids = frame.ids[frame.is_bead], previous.ids[previous.is_bead]
+    if len(ids) != len(prev_ids) or np.any(ids != prev_ids):
+        raise ValueError("layer_side_mobility: the two frames do not hold the same beads (atom IDs)")
+    axis = "xy".index(layer.coord)
+    xy, r, _ = previous.beads()
+    d = frame.box.minimum_image(frame.beads()[0] - xy)
+    diameter = 2 * np.median(r)
+    L = float(np.median(previous.rods().length))
+    lo, hi = geometry.coordinate_range(layer.coord)
+    s = xy[:, axis] - layer.position
+    if geometry.is_periodic(layer.coord):
+        s -= (hi - lo) * np.round(s / (hi - lo))
+    s *= layer.direction
+    out = {}
+    for side, sel in (("ahead", (s >= L) & (s <= (1 + window) * L)),
+                      ("behind", (s <= -L) & (s >= -(1 + window) * L))):
+        dd = d[sel]
+        drift = dd.mean(axis=0) if len(dd) else np.full(2, np.nan)
+        out[side] = float(np.sqrt(np.mean(np.sum((dd - drift) ** 2, axis=1))) / diameter) if len(dd) else float("nan")
+        out[side + "_drift"] = float(layer.direction * drift[axis] / diameter)
+        out["n_" + side] = int(sel.sum())
+    return out
+
+
 @dataclass
 class PhaseResult:
     phase: str

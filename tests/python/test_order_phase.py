@@ -315,3 +315,30 @@ def test_layer_drive_measures_the_beads_and_rods_it_moves():
     assert drive["rods_in_layer"] == 8 and drive["beads_in_layer"] > 50
     with pytest.raises(ValueError):
         A.layer_drive(S.make_frame(box, beads, 0.5, centres, axes), geometry_from_box(box))
+
+
+def test_layer_side_mobility_separates_a_crystal_pushed_ahead_from_a_fluid_behind():
+    # A row at x = 30 pointing +x in a 124 x 31 channel; between the frames the beads ahead all
+    # move by 0.3 along x (no motion against each other), those behind by a random jitter of
+    # known rms about a drift of 0.1.
+    box = Box((0.0, 0.0, 0.0), (124.0, 31.0, 1.12), (True, False, False))
+    centres = np.column_stack([np.full(8, 30.0), np.linspace(2.0, 29.0, 8)])
+    axes = np.tile([1.0, 0.0], (8, 1))
+    beads = S.remove_overlaps(S.lattice_beads(0, 124, 0, 31, 1.5), box, centres, axes)
+    before = S.make_frame(box, beads, 0.5, centres, axes)
+    layer = A.layer_sides(before, geometry_from_box(box))
+    L = float(np.median(before.rods().length))
+    s = beads[:, 0] - layer.position
+    s -= 124.0 * np.round(s / 124.0)
+    ahead, behind = (s >= L) & (s <= 6 * L), (s <= -L) & (s >= -6 * L)
+    jitter = np.random.default_rng(3).normal(0.0, 0.2, size=beads.shape)
+    moved = beads + np.where(ahead[:, None], [0.3, 0.0], 0.0) + np.where(behind[:, None], jitter + [0.1, 0.0], 0.0)
+    after = S.make_frame(box, moved, 0.5, centres, axes)
+    m = A.layer_side_mobility(after, before, geometry_from_box(box))
+    assert layer.direction == 1
+    assert m["n_ahead"] == ahead.sum() > 50 and m["n_behind"] == behind.sum() > 50
+    assert m["ahead"] == pytest.approx(0.0, abs=1e-9)
+    assert m["ahead_drift"] == pytest.approx(0.3, rel=1e-9)
+    j = jitter[behind] - jitter[behind].mean(axis=0)
+    assert m["behind"] == pytest.approx(np.sqrt(np.mean(np.sum(j * j, axis=1))), rel=1e-9)
+    assert m["behind_drift"] == pytest.approx(0.1 + jitter[behind, 0].mean(), rel=1e-9)
