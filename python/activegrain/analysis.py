@@ -404,6 +404,38 @@ def layer_drive(frame, geometry, layer=None, halfwidth=None):
             "u": rod_speed / order, "beads_in_layer": int(in_layer.sum()), "rods_in_layer": int(members.sum())}
 
 
+def layer_height_modes(frame, geometry, layer=None, modes=4):
+    """The shape of a rod layer that spans a channel between side walls, as cosine modes.
+
+    The rods whose centres lie within a rod length of ``layer`` (default: the densest layer);
+    their offsets h along x from the layer's mean position, against their y across the channel of
+    width W between its walls: a_n = (2 / N) sum_j h_j cos(q_n (y_j - y_wall)), q_n = n pi / W,
+    n = 1..``modes``. Returns ``(q, a)`` (arrays, frame length units). A line of tension sigma at
+    granular temperature T has sigma W q_n^2 <a_n^2> / 4 = T / 2 per mode, so
+    W q_n^2 <a_n^2> / 2 over frames is the length T / sigma (:func:`interfacial_length`)."""
+    layer = layer or layer_sides(frame, geometry)
+    if layer.coord != "x" or geometry.is_periodic("y"):
+        raise ValueError("layer_height_modes: for a layer across a channel with side walls in y")
+    rods = frame.rods()
+    L = float(np.median(rods.length))
+    lo, hi = geometry.coordinate_range("x")
+    h = rods.centre[:, 0] - layer.position
+    h -= (hi - lo) * np.round(h / (hi - lo))
+    member = np.abs(h) <= L
+    h = h[member] - np.mean(h[member])
+    y0, y1 = geometry.coordinate_range("y")
+    y = rods.centre[member, 1] - y0
+    q = np.arange(1, modes + 1) * np.pi / (y1 - y0)
+    a = 2.0 / len(h) * np.cos(np.outer(q, y)) @ h
+    return q, a
+
+
+def interfacial_length(q, a, width):
+    """T / sigma per mode from :func:`layer_height_modes` of many frames: ``a`` of shape
+    (frames, modes); W q_n^2 <a_n^2> / 2 (equipartition of a line's capillary modes)."""
+    return width * np.asarray(q) ** 2 * np.mean(np.asarray(a) ** 2, axis=0) / 2.0
+
+
 def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="beads", spacing=None):
     """Area-fraction profile against the distance ahead of a rod layer.
 

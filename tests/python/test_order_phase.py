@@ -342,3 +342,22 @@ def test_layer_side_mobility_separates_a_crystal_pushed_ahead_from_a_fluid_behin
     j = jitter[behind] - jitter[behind].mean(axis=0)
     assert m["behind"] == pytest.approx(np.sqrt(np.mean(np.sum(j * j, axis=1))), rel=1e-9)
     assert m["behind_drift"] == pytest.approx(0.1 + jitter[behind, 0].mean(), rel=1e-9)
+
+
+def test_layer_height_modes_recover_a_cosine_shaped_row():
+    # Ten rods across a 124 x 31 channel (walls in y) at y_j = (j + 1/2) W / 10, their centres at
+    # x = 30 + 0.8 cos(pi y / W) + 0.3 cos(3 pi y / W): modes 1 and 3 exactly, none else.
+    box = Box((0.0, 0.0, 0.0), (124.0, 31.0, 1.12), (True, False, False))
+    y = (np.arange(10) + 0.5) * 3.1
+    x = 30.0 + 0.8 * np.cos(np.pi * y / 31.0) + 0.3 * np.cos(3 * np.pi * y / 31.0)
+    beads = S.remove_overlaps(S.lattice_beads(0, 124, 0, 31, 1.5), box, np.column_stack([x, y]),
+                              np.tile([1.0, 0.0], (10, 1)))
+    fr = S.make_frame(box, beads, 0.5, np.column_stack([x, y]), np.tile([1.0, 0.0], (10, 1)))
+    q, a = A.layer_height_modes(fr, geometry_from_box(box), modes=4)
+    assert q == pytest.approx(np.arange(1, 5) * np.pi / 31.0, rel=1e-12)
+    assert a == pytest.approx([0.8, 0.0, 0.3, 0.0], abs=1e-9)
+    # Equipartition: modes of rms a_n = sqrt(2 T / (sigma W)) / q_n give T / sigma in every mode.
+    length = A.interfacial_length(q, np.array([np.sqrt(2 * 1.9 / 31.0) / q, -np.sqrt(2 * 1.9 / 31.0) / q]), 31.0)
+    assert length == pytest.approx(np.full(4, 1.9), rel=1e-12)
+    with pytest.raises(ValueError):
+        A.layer_height_modes(fr, geometry_from_box(Box((0.0, 0.0, 0.0), (124.0, 31.0, 1.12), (True, True, False))))
