@@ -116,6 +116,7 @@ double turning_extra(const ContactSolver::Contact &c)
   const double e = c.material.e;
   return 1.0 / std::max(e * e, kTurnStiffestE * kTurnStiffestE) - 1.0;
 }
+
 // An island takes at most this many impacts in order within a step; contacts that would close
 // after them wait for the next step (rods bouncing between base and lid with little play).
 constexpr int kMaxImpactsInOrder = 64;
