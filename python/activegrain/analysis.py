@@ -359,6 +359,15 @@ def find_layers(frame, geometry, max_layers=2, min_fraction=0.2, halfwidth=None,
     return layers
 
 
+def _from_layer(geometry, layer, points):
+    """The points' coordinate across ``layer`` less its position (minimum image where periodic)."""
+    lo, hi = geometry.coordinate_range(layer.coord)
+    d = geometry.coordinate(points, layer.coord) - layer.position
+    if geometry.is_periodic(layer.coord):
+        d -= (hi - lo) * np.round(d / (hi - lo))
+    return d
+
+
 def layer_sides(frame, geometry, halfwidth=None, gap=None, window=None):
     """The densest rod layer and the bead area fraction on both of its sides
     (:func:`find_layers` with one layer)."""
@@ -382,15 +391,10 @@ def layer_drive(frame, geometry, layer=None, halfwidth=None):
         raise ValueError("layer_drive: the dump has no velocities")
     L = float(np.median(rods.length))
     coord = layer.coord
-    lo, hi = geometry.coordinate_range(coord)
-    period = hi - lo
     reach = (halfwidth or L) / geometry.length_per_unit(coord)
 
     def near(points):
-        d = geometry.coordinate(points, coord) - layer.position
-        if geometry.is_periodic(coord):
-            d -= period * np.round(d / period)
-        return np.abs(d) <= reach
+        return np.abs(_from_layer(geometry, layer, points)) <= reach
 
     def forward(points, velocities):
         direction = geometry.tangent(points) if coord == "theta" else np.eye(2)["xy".index(coord)]
@@ -418,9 +422,7 @@ def layer_height_modes(frame, geometry, layer=None, modes=4):
         raise ValueError("layer_height_modes: for a layer across a channel with side walls in y")
     rods = frame.rods()
     L = float(np.median(rods.length))
-    lo, hi = geometry.coordinate_range("x")
-    h = rods.centre[:, 0] - layer.position
-    h -= (hi - lo) * np.round(h / (hi - lo))
+    h = _from_layer(geometry, layer, rods.centre)
     member = np.abs(h) <= L
     h = h[member] - np.mean(h[member])
     y0, y1 = geometry.coordinate_range("y")
@@ -453,9 +455,7 @@ def layer_profile(frame, geometry, layer=None, extent=None, bins=40, species="be
     extent = extent or 0.5 * (hi - lo) * arc
     edges = np.linspace(-extent, extent, int(bins) + 1)
     xy, w = area_samples(frame, species, spacing)
-    d = geometry.coordinate(xy, coord) - layer.position
-    if periodic:
-        d -= (hi - lo) * np.round(d / (hi - lo))
+    d = _from_layer(geometry, layer, xy)
     covered, _ = np.histogram(d * layer.direction * arc, edges, weights=w)
     absolute = layer.position + layer.direction * edges / arc
     if not periodic:
@@ -519,17 +519,23 @@ def segregation_index(frame, geometry, cell=None):
     return float(1 - at_rods / mean_b)
 
 
+def _bead_displacements(frame, previous, caller):
+    """The beads' displacements from ``previous`` to ``frame`` (matched by atom ID, minimum
+    image), their positions in ``previous`` and their radii."""
+    ids, prev_ids = frame.ids[frame.is_bead], previous.ids[previous.is_bead]
+    if len(ids) != len(prev_ids) or np.any(ids != prev_ids):
+        raise ValueError(f"{caller}: the two frames do not hold the same beads (atom IDs)")
+    xy, r, _ = previous.beads()
+    return frame.box.minimum_image(frame.beads()[0] - xy), xy, r
+
+
 def bead_mobility(frame, previous):
     """Root-mean-square displacement of the beads from ``previous`` to ``frame``, in units of
     the median bead diameter (minimum image across periodic sides). The beads are matched by
     atom ID; both frames must hold the same beads."""
-    ids, prev_ids = frame.ids[frame.is_bead], previous.ids[previous.is_bead]
-    if len(ids) == 0:
+    if not np.any(frame.is_bead):
         raise ValueError("bead_mobility: the frame has no beads")
-    if len(ids) != len(prev_ids) or np.any(ids != prev_ids):
-        raise ValueError("bead_mobility: the two frames do not hold the same beads (atom IDs)")
-    xy, r, _ = frame.beads()
-    d = frame.box.minimum_image(xy - previous.beads()[0])
+    d, _, r = _bead_displacements(frame, previous, "bead_mobility")
     return float(np.sqrt(np.mean(np.sum(d * d, axis=1))) / (2 * np.median(r)))
 
 
@@ -545,19 +551,11 @@ def layer_side_mobility(frame, previous, geometry, layer=None, window=5.0):
     layer = layer or layer_sides(previous, geometry)
     if layer.coord not in ("x", "y"):
         raise ValueError("layer_side_mobility: only for layers across x or y")
-    ids, prev_ids = frame.ids[frame.is_bead], previous.ids[previous.is_bead]
-    if len(ids) != len(prev_ids) or np.any(ids != prev_ids):
-        raise ValueError("layer_side_mobility: the two frames do not hold the same beads (atom IDs)")
     axis = "xy".index(layer.coord)
-    xy, r, _ = previous.beads()
-    d = frame.box.minimum_image(frame.beads()[0] - xy)
+    d, xy, r = _bead_displacements(frame, previous, "layer_side_mobility")
     diameter = 2 * np.median(r)
     L = float(np.median(previous.rods().length))
-    lo, hi = geometry.coordinate_range(layer.coord)
-    s = xy[:, axis] - layer.position
-    if geometry.is_periodic(layer.coord):
-        s -= (hi - lo) * np.round(s / (hi - lo))
-    s *= layer.direction
+    s = layer.direction * _from_layer(geometry, layer, xy)
     out = {}
     for side, sel in (("ahead", (s >= L) & (s <= (1 + window) * L)),
                       ("behind", (s <= -L) & (s >= -(1 + window) * L))):
