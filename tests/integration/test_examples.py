@@ -23,6 +23,8 @@ DECKS = {
     "annulus-floral": ("annulus", "in.annulus-small", ["-var", "floral", "yes"], "annulus"),
     "annulus-tangential": ("annulus", "in.annulus-small", ["-var", "orient", "tangential"], "annulus"),
     "channel": ("channel", "in.channel-small", [], "channel"),
+    # (phi_b 0.65: the lattice holds it; the deck's 0.75 takes the slower grow start)
+    "rectangle": ("box", "in.rectangle-small", ["-var", "phi_b", "0.65"], "rectangle"),
 }
 
 SETUP = re.compile(r"ActiveGrain (\w+): .*phi_b = ([\d.]+) \(asked ([\d.]+)\), "
