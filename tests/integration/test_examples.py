@@ -198,3 +198,62 @@ def test_channel_continues_from_its_restart_file(tmp_path, ranks):
     for step in (500, 550):
         assert continued[step][0] == pytest.approx(step * DT, rel=1e-12)    # the simulation time
         assert continued[step][1:] == pytest.approx(whole[step][1:], rel=1e-6), step
+
+
+# A bead thrown at a cusp of the scalloped wall, where a lobe meets the rim. LAMMPS's union region
+# drops the contacts there (both circles' nearest points lie inside the other circle): without the
+# posts that round the cusps the bead flies through the wall and is lost.
+CUSP_DECK = """variable geometry index annulus
+variable R_in index 6e-3
+variable R_out index 20e-3
+variable floral index yes
+variable lobe index 2e-3
+variable phi_b index 0.02
+variable phi_r index 0.003
+include in.create
+# The cusp P where lobe 1 (centre C) meets the rim, and the axis of the wall's tooth there: the sum
+# of the rim's and the lobe's outward normals at P. The bead starts 1.5 mm from P on that axis and
+# flies along it, so that both circles' nearest points lie inside the other circle.
+variable theta equal 2*PI/${nlobes}
+variable cusp equal ${theta}+2*asin(${lobe}/(2*${R_out}))
+variable px equal ${R_out}*cos(${cusp})
+variable py equal ${R_out}*sin(${cusp})
+variable ax0 equal cos(${cusp})+(${px}-${R_out}*cos(${theta}))/${lobe}
+variable ay0 equal sin(${cusp})+(${py}-${R_out}*sin(${theta}))/${lobe}
+variable ax equal ${ax0}/sqrt(${ax0}^2+${ay0}^2)
+variable ay equal ${ay0}/sqrt(${ax0}^2+${ay0}^2)
+variable xs equal ${px}-1.5e-3*${ax}
+variable ys equal ${py}-1.5e-3*${ay}
+region clear sphere ${xs} ${ys} $(v_r+1e-5) 2e-3 units box
+group near region clear
+group cleared intersect near beads
+delete_atoms group cleared compress no
+create_atoms 4 single ${xs} ${ys} $(v_r+1e-5) units box
+group near region clear
+group type4 type 4
+group thrown intersect near type4
+group beads type 4
+set group thrown diameter ${d}
+set group thrown density 2700
+set group thrown mol 0
+velocity thrown set $(0.4*v_ax) $(0.4*v_ay) 0 units box
+timestep 1e-4
+thermo 100
+run 300
+print "bead at $(xcm(thrown,x)) $(xcm(thrown,y)) $(count(thrown))"
+"""
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_a_bead_thrown_at_a_cusp_of_the_scalloped_wall_stays_in_the_cell(tmp_path, ranks):
+    """0.4 m/s at a cusp, head on: it bounces back, still inside the cell (no atom lost)."""
+    deck = tmp_path / "in.cusp"
+    deck.write_text(CUSP_DECK)
+    done = subprocess.run([*mpi_prefix(ranks), LMP, "-in", str(deck), "-var", "out", str(tmp_path),
+                           "-log", "none"],
+                          cwd=EXAMPLES / "rods-and-beads", capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and "ERROR" not in done.stdout, done.stdout[-3000:]
+    m = re.search(r"bead at (\S+) (\S+) (\S+)", done.stdout)
+    x, y = float(m.group(1)), float(m.group(2))
+    assert int(float(m.group(3))) == 1
+    assert (x * x + y * y) ** 0.5 < 20e-3 - 0.5e-3    # thrown back into the ring
