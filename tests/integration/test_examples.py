@@ -224,6 +224,8 @@ variable ax equal ${ax0}/sqrt(${ax0}^2+${ay0}^2)
 variable ay equal ${ay0}/sqrt(${ax0}^2+${ay0}^2)
 variable xs equal ${px}-1.5e-3*${ax}
 variable ys equal ${py}-1.5e-3*${ay}
+# (the rigid fix is replaced around delete_atoms, create_atoms and set, as in CHECK_DECK)
+unfix rodsfix
 region clear sphere ${xs} ${ys} $(v_r+1e-5) 2e-3 units box
 group near region clear
 group cleared intersect near beads
@@ -236,6 +238,7 @@ group beads type 4
 set group thrown diameter ${d}
 set group thrown density 2700
 set group thrown mol 0
+fix rodsfix rods rigid/rod molecule mol rod
 velocity thrown set $(0.4*v_ax) $(0.4*v_ay) 0 units box
 timestep 1e-4
 thermo 100
