@@ -231,7 +231,7 @@ group near region clear
 group cleared intersect near beads
 delete_atoms group cleared compress no
 create_atoms 4 single ${xs} ${ys} $(v_r+1e-5) units box
-group near region clear
+group near region clear    # (adds the new bead to the group)
 group type4 type 4
 group thrown intersect near type4
 group beads type 4
