@@ -496,6 +496,8 @@ class PhaseThresholds:
     jammed_fraction: float = 0.84  # phi_b + phi_r from which an arrested packing counts as jammed
     jammed_mobility: float = 0.1  # rms bead displacement between frames, in bead diameters, below
                                   # which the dynamics count as arrested
+    flock_drift: float = 0.05     # rods' mean advance along their axes between frames, in rod
+                                  # lengths, below which aligned rods are held still, not a flock
 
 
 def segregation_index(frame, geometry, cell=None):
@@ -527,6 +529,20 @@ def _bead_displacements(frame, previous, caller):
         raise ValueError(f"{caller}: the two frames do not hold the same beads (atom IDs)")
     xy, r, _ = previous.beads()
     return frame.box.minimum_image(frame.beads()[0] - xy), xy, r
+
+
+def rod_drift(frame, previous):
+    """Mean advance of the rods along their own axes from ``previous`` to ``frame``, in units of
+    the median rod length: each rod's centre displacement (minimum image) projected on its axis
+    in ``previous``. The rods are matched by rod ID; rods in only one frame are left out, and
+    NaN is returned if none is in both."""
+    now, before = frame.rods(), previous.rods()
+    common, i_now, i_before = np.intersect1d(now.ids, before.ids, return_indices=True)
+    if len(common) == 0:
+        return float("nan")
+    d = frame.box.minimum_image(now.centre[i_now] - before.centre[i_before])
+    advance = np.sum(d * before.axis[i_before], axis=1)
+    return float(np.mean(advance) / np.median(before.length))
 
 
 def bead_mobility(frame, previous):
@@ -578,7 +594,9 @@ def phase_observables(frame, geometry, thresholds=None, previous=None):
 
     ``phi_total`` = phi_b + phi_r; with an earlier frame ``previous`` of the same run,
     ``mobility``: the beads' rms displacement since then in bead diameters
-    (:func:`bead_mobility`; NaN without one) and ``interval``, the time between the frames.
+    (:func:`bead_mobility`; NaN without one), ``rod_drift``: the rods' mean advance along their
+    axes since then in rod lengths (:func:`rod_drift`; NaN without one or without rods) and
+    ``interval``, the time between the frames.
 
     Layer observables: those of the densest layer (``layer_*``, ``phi_ahead``,
     ``phi_behind``), and over up to two layers the number of *active* ones (aligned and
@@ -592,11 +610,12 @@ def phase_observables(frame, geometry, thresholds=None, previous=None):
            "mobility": float("nan") if previous is None else bead_mobility(frame, previous),
            "interval": float("nan") if previous is None else frame.time - previous.time}
     if len(rods) == 0:  # beads only: nothing to order, segregate or layer
-        obs.update(P=0.0, segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
+        obs.update(P=0.0, rod_drift=float("nan"), segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
                    phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
                    layer_coord="", n_active_layers=0, active_layer_fraction=0.0)
         return obs
     obs["P"] = polar_order(rods.axis)[1]
+    obs["rod_drift"] = float("nan") if previous is None else rod_drift(frame, previous)
     if isinstance(geometry, Annulus):
         obs["P_tangential"] = tangential_polarization(rods, geometry)
     obs["segregation"] = segregation_index(frame, geometry)
@@ -624,7 +643,9 @@ def classify_phase(frame, geometry, thresholds=PhaseThresholds(), previous=None)
        fraction ahead exceeding the one behind by ``layer_contrast``; one layer, or two
        trapping a condensate) hold at least ``layer_fraction`` of the rods;
     2. ``segregated``: segregation index >= ``segregation``;
-    3. ``flock``: rod polar order |<p>| >= ``polar_order``;
+    3. ``flock``: rod polar order |<p>| >= ``polar_order``, and, with ``previous``, the rods
+       advance along their axes by at least ``flock_drift`` rod lengths since then (aligned
+       rods held still, e.g. stacked against a wall, are not a flock);
     4. ``isotropic`` otherwise.
     """
     obs = phase_observables(frame, geometry, thresholds, previous)
@@ -635,7 +656,7 @@ def classify_phase(frame, geometry, thresholds=PhaseThresholds(), previous=None)
         phase = "condensed"
     elif obs["segregation"] >= t.segregation:
         phase = "segregated"
-    elif obs["P"] >= t.polar_order:
+    elif obs["P"] >= t.polar_order and (previous is None or obs["rod_drift"] >= t.flock_drift):
         phase = "flock"
     else:
         phase = "isotropic"

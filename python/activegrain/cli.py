@@ -274,7 +274,7 @@ def build_parser():
     p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed/jammed")
     _add_dump_args(p)
     p.add_argument("--lag", type=int, default=1,
-                   help="bead mobility (for jammed) against the frame this many frames earlier (0: none)")
+                   help="bead mobility (jammed) and rod drift (flock) against the frame this many frames earlier (0: none)")
     p.set_defaults(func=cmd_phase)
 
     p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
@@ -366,7 +366,7 @@ def build_parser():
     p.add_argument("--timeout", type=float, help="seconds allowed per run")
     p.add_argument("--dump", help="dump file a run writes (default: the only *.dump in its folder)")
     p.add_argument("--frames", type=int, default=5, help="classify this many last frames (majority)")
-    p.add_argument("--lag", type=int, default=1, help="bead mobility against the frame this many earlier")
+    p.add_argument("--lag", type=int, default=1, help="bead mobility (jammed) and rod drift (flock) against the frame this many earlier")
     p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
     p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius (dump units)")
     p.add_argument("--r-out", type=float, help="annulus outer radius (dump units)")

@@ -361,3 +361,24 @@ def test_layer_height_modes_recover_a_cosine_shaped_row():
     assert length == pytest.approx(np.full(4, 1.9), rel=1e-12)
     with pytest.raises(ValueError):
         A.layer_height_modes(fr, geometry_from_box(Box((0.0, 0.0, 0.0), (124.0, 31.0, 1.12), (True, True, False))))
+
+
+def test_aligned_rods_held_still_are_not_a_flock():
+    fr = S.phase_configuration("flock")
+    g = geometry_from_box(fr.box)
+    rods = fr.rods()
+    L = float(np.median(rods.length))
+
+    def advanced(by):  # every rod moved ``by`` rod lengths along its own axis
+        return S.make_frame(fr.box, fr.beads()[0], 0.5, rods.centre + by * L * rods.axis, rods.axis)
+
+    moving = A.classify_phase(advanced(0.3), g, previous=fr)
+    assert moving.phase == "flock" and moving.observables["rod_drift"] == pytest.approx(0.3)
+    # the same rods pressed still, e.g. stacked into a corner (rectangle-small): not a flock
+    still = A.classify_phase(advanced(0.0), g, previous=fr)
+    assert still.phase == "isotropic" and still.observables["rod_drift"] == pytest.approx(0.0, abs=1e-12)
+    # walking backwards is not a flock's motion either
+    assert A.classify_phase(advanced(-0.3), g, previous=fr).phase == "isotropic"
+    # without a previous frame there is no drift to decide on: polar order alone decides
+    assert np.isnan(A.classify_phase(fr, g).observables["rod_drift"])
+    assert A.classify_phase(fr, g).phase == "flock"
