@@ -45,6 +45,9 @@ static constexpr int MIN_RESOLUTION = 20;
 static constexpr bigint FIRST_CAP_WARNING = 10;    // then every tenfold
 // The near pairs (NearPairs) are those within this fraction of the neighbor skin.
 static constexpr double NEAR_MARGIN = 0.25;
+// stays_open() leaves to add_contact() the contacts that close or stay open by less than this
+// fraction of their gap and travel: the atoms' and the bodies' velocities differ by round-off.
+static constexpr double ROUNDOFF_MARGIN = 1e-6;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution).
 static constexpr int RESTART_FORMAT = -2;
@@ -322,9 +325,11 @@ int PairGranImpulse::body_of_atom(int i)
   return atom_body[i];
 }
 
-// Lever arm from body's centre of mass to point, taken from atom i's own image of the body.
+// Lever arm from body's centre of mass to point, taken from atom i's own image of the body (a
+// bead's from the atom itself: its images share one body).
 Vec3 PairGranImpulse::lever_arm(int i, int body, const Vec3 &point) const
 {
+  if (!ranks.body_id(i)) return point - Vec3(atom->x[i]);
   double com[3], com_image[3];
   solver.body(body).com.store(com);
   domain->closest_image(atom->x[i], com, com_image);
@@ -340,6 +345,24 @@ Vec3 PairGranImpulse::gravity_of_atom(int i) const
   for (const auto &g : gravity_now)
     if (atom->mask[i] & g.first) a += g.second;
   return a;
+}
+
+// Atom i's velocity at a point of its surface, from the atom's own velocity and spin: the
+// velocity of its solver body there, to round-off (a rigid body's atoms move with it; an atom
+// held by fix freeze does not turn).
+Vec3 PairGranImpulse::atom_velocity_at(int i, const Vec3 &point) const
+{
+  if (atom->mask[i] & freeze_groupbit) return Vec3(atom->v[i]);
+  return Vec3(atom->v[i]) + cross(Vec3(atom->omega[i]), point - Vec3(atom->x[i]));
+}
+
+// Whether a contact surely stays open through the step: add_contact's closing test, on the atoms'
+// velocities and beyond their round-off from the bodies'. Most near pairs and plate contacts
+// part, or close too slowly: they need no solver bodies.
+bool PairGranImpulse::stays_open(double gap, const Vec3 &u, const Vec3 &n) const
+{
+  const double dt = update->dt;
+  return gap + dot(u, n) * dt > ROUNDOFF_MARGIN * (std::fabs(gap) + norm(u) * dt);
 }
 
 void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms, const Vec3 &n,
@@ -381,15 +404,20 @@ void PairGranImpulse::add_contact(int body1, int body2, const AtomContact &atoms
 
 void PairGranImpulse::add_found_contacts()
 {
-  auto shuffled = [](const FoundContact &a, const FoundContact &b) {
+  // Sorted as keys (the contacts themselves are large to move).
+  sort_keys.clear();
+  for (std::size_t k = 0; k < found.size(); k++) {
+    const FoundContact &c = found[k];
+    sort_keys.push_back({order == Order::SHUFFLE ? c.shuffle : 0, c.identity, static_cast<int>(k)});
+  }
+  auto ascending = [](const SortKey &a, const SortKey &b) {
     return std::tie(a.shuffle, a.identity) < std::tie(b.shuffle, b.identity);
   };
-  auto ascending = [](const FoundContact &a, const FoundContact &b) { return a.identity < b.identity; };
-  auto descending = [](const FoundContact &a, const FoundContact &b) { return b.identity < a.identity; };
-  if (order == Order::SHUFFLE) std::sort(found.begin(), found.end(), shuffled);
-  else if (order == Order::TAG) std::sort(found.begin(), found.end(), ascending);
-  else std::sort(found.begin(), found.end(), descending);
-  for (const FoundContact &c : found) {
+  auto descending = [](const SortKey &a, const SortKey &b) { return b.identity < a.identity; };
+  if (order == Order::REVERSE) std::sort(sort_keys.begin(), sort_keys.end(), descending);
+  else std::sort(sort_keys.begin(), sort_keys.end(), ascending);
+  for (const SortKey &key : sort_keys) {
+    const FoundContact &c = found[key.index];
     solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.min_separation, c.gain,
                             c.atoms.time_to_contact);
     atom_contacts.push_back(c.atoms);
@@ -415,6 +443,7 @@ void PairGranImpulse::gather_pair_contacts()
     if (!gap_may_close(gap, Vec3(v[i]) - Vec3(v[j]), spin_speed[i] + spin_speed[j], update->dt)) continue;
     const Vec3 n = d / r;    // from i to j
     const Vec3 point = Vec3(x[i]) + n * (radius[i] + 0.5 * gap);
+    if (stays_open(gap, atom_velocity_at(j, point) - atom_velocity_at(i, point), n)) continue;
     const int bi = body_of_atom(i), bj = body_of_atom(j);
     if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
     if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
@@ -432,6 +461,7 @@ void PairGranImpulse::gather_wall_contacts()
     wall->find_wall_contacts(reach, ranks.solved_atoms(), spin_speed, wall_scratch);
     wall_speed = std::max(wall_speed, wall->wall_speed());
     for (const ImpulseWall::Contact &c : wall_scratch) {
+      if (stays_open(c.gap, atom_velocity_at(c.atom, c.point) - c.wall_velocity, c.normal)) continue;
       const int b = body_of_atom(c.atom);
       if (solver.body(b).is_static()) continue;    // a frozen atom
       const int w = solver.add_body(RigidBodyState::wall(c.wall_velocity));

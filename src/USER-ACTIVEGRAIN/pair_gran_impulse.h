@@ -95,6 +95,12 @@ class PairGranImpulse : public Pair {
     ActiveGrain::Vec3 gain;
     AtomContact atoms;
   };
+  // Where a found contact goes in the order (shuffle 0 unless shuffled).
+  struct SortKey {
+    std::uint64_t shuffle;
+    ContactIdentity identity;
+    int index;    // in found
+  };
   // Columns of the pending store (see pending): the force and torque of the step's contacts, the
   // time step they belong to (their impulse is force times it: a time step change keeps the
   // impulse), and the step.
@@ -111,6 +117,8 @@ class PairGranImpulse : public Pair {
                    const ActiveGrain::Vec3 &atom_acceleration,
                    const ActiveGrain::Vec3 &wall_acceleration = ActiveGrain::Vec3());
   ActiveGrain::Vec3 gravity_of_atom(int i) const;
+  ActiveGrain::Vec3 atom_velocity_at(int i, const ActiveGrain::Vec3 &point) const;
+  bool stays_open(double gap, const ActiveGrain::Vec3 &u, const ActiveGrain::Vec3 &n) const;
   void gather_pair_contacts();
   void gather_wall_contacts();
   void add_found_contacts();
@@ -146,6 +154,7 @@ class PairGranImpulse : public Pair {
 
   ActiveGrain::ContactSolver solver;
   std::vector<FoundContact> found;
+  std::vector<SortKey> sort_keys;
   std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
   std::vector<ImpulseWall::Contact> wall_scratch;
   ActiveGrain::KeyIndex body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
