@@ -830,6 +830,6 @@ double PairGranImpulse::memory_usage()
 {
   return (double) NUM_CONTACT_COLUMNS * nmax * sizeof(double) + (double) atom_body.capacity() * sizeof(int) +
       ranks.memory_usage() + near.memory_usage() +
-      (double) found.capacity() * sizeof(FoundContact) +
+      (double) found.capacity() * sizeof(FoundContact) + (double) sort_keys.capacity() * sizeof(SortKey) +
       (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
 }
