@@ -108,3 +108,12 @@ def test_a_target_the_lattice_holds_is_not_grown(tmp_path):
 def test_bad_start_settings_are_refused(tmp_path, extra, message):
     done = create(tmp_path, 1, *extra)
     assert done.returncode == 1 and message in done.stdout, done.stdout[-2000:]
+
+
+def test_overlaps_left_after_settling_are_refused(tmp_path):
+    # no packing meets a bound of 1e-30 d: the settling runs all grow_settle steps, then stops
+    done = create(tmp_path, 1, "-var", "grow_overlap", "1e-30", "-var", "grow_settle", "400")
+    assert done.returncode == 1, done.stdout[-2000:]
+    assert re.search(r"largest overlap after growing \S+ d \(at most 1e-30\), settled for 400 steps", done.stdout)
+    assert re.search(r"ERROR: in\.create: phi_b 0\.75 with phi_r 0\.06 not reached by growing the beads: overlaps of \S+ d "
+                     r"remain \(grow_overlap 1e-30\)", done.stdout)
