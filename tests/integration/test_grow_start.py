@@ -104,6 +104,7 @@ def test_a_target_the_lattice_holds_is_not_grown(tmp_path):
 @pytest.mark.parametrize("extra, message", [
     (["-var", "start", "compress"], "ERROR: in.create: start must be auto, lattice or grow, not compress"),
     (["-var", "grow_phi", "0.8"], "ERROR: in.create: the grow start places beads at grow_phi 0.8, which must be below phi_b 0.75"),
+    (["-var", "grow_speed", "-0.1"], "ERROR: in.create: grow_speed -0.1 must be >= 0"),
 ])
 def test_bad_start_settings_are_refused(tmp_path, extra, message):
     done = create(tmp_path, 1, *extra)
@@ -117,3 +118,21 @@ def test_overlaps_left_after_settling_are_refused(tmp_path):
     assert re.search(r"largest overlap after growing \S+ d \(at most 1e-30\), settled for 400 steps", done.stdout)
     assert re.search(r"ERROR: in\.create: phi_b 0\.75 with phi_r 0\.06 not reached by growing the beads: overlaps of \S+ d "
                      r"remain \(grow_overlap 1e-30\)", done.stdout)
+
+
+def test_cold_growth_reaches_the_asked_fractions(tmp_path):
+    # grow_speed 0: the beads grow at rest under a drag (the grow start before hot growth)
+    done = create(tmp_path, 1, "-var", "grow_speed", "0", "-var", "grow_e", "0.3", "-var", "grow_mu", "0.05")
+    assert done.returncode == 0 and "ERROR" not in done.stdout, done.stdout[-2000:]
+    phi_b, asked_b = REPORT.search(done.stdout).groups()[:2]
+    assert abs(float(phi_b) - float(asked_b)) <= 0.005
+
+
+def test_hot_growth_reaches_the_jammed_corner(tmp_path):
+    # a total of 0.86 in half of channel-small (30 x 15 d), past the ~0.855 at which a packing
+    # grown at rest locks (examples/README.md); in seconds
+    done = create(tmp_path, 1, "-var", "Lx", "30e-3", "-var", "Ly", "15e-3", "-var", "phi_b", "0.82", "-var", "phi_r", "0.04",
+                  "-var", "grow_phi", "0.6")
+    assert done.returncode == 0 and "ERROR" not in done.stdout, done.stdout[-2000:]
+    phi_b, _, phi_r, _, _, rods = REPORT.search(done.stdout).groups()
+    assert float(phi_b) + float(phi_r) >= 0.86 and int(rods) == 5
