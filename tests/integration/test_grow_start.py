@@ -112,8 +112,10 @@ def test_bad_start_settings_are_refused(tmp_path, extra, message):
 
 
 def test_overlaps_left_after_settling_are_refused(tmp_path):
-    # no packing meets a bound of 1e-30 d: the settling runs all grow_settle steps, then stops
-    done = create(tmp_path, 1, "-var", "grow_overlap", "1e-30", "-var", "grow_settle", "400")
+    # a packing grown cold keeps overlaps above 1e-30 d (a hot one can settle to none): the
+    # settling runs all grow_settle steps, then stops
+    done = create(tmp_path, 1, "-var", "grow_overlap", "1e-30", "-var", "grow_settle", "400",
+                  "-var", "grow_speed", "0", "-var", "grow_e", "0.3", "-var", "grow_mu", "0.05")
     assert done.returncode == 1, done.stdout[-2000:]
     assert re.search(r"largest overlap after growing \S+ d \(at most 1e-30\), settled for 400 steps", done.stdout)
     assert re.search(r"ERROR: in\.create: phi_b 0\.75 with phi_r 0\.06 not reached by growing the beads: overlaps of \S+ d "
