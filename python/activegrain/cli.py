@@ -1,4 +1,4 @@
-"""Command line: ``python3 -m activegrain {profile,map,polar,phase,motility,snapshot,kymograph,movie,convert,theory,continuum,sweep} ...``.
+"""Command line: ``python3 -m activegrain {profile,map,polar,phase,condensate,motility,snapshot,kymograph,movie,convert,theory,continuum,sweep} ...``.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
@@ -121,6 +121,30 @@ def cmd_phase(args, out):
         res = analysis.classify_phase(fr, geom, previous=previous)
         row = {"step": fr.step, "phase": res.phase}
         row.update({k: v for k, v in res.observables.items() if k != "layer_coord"})
+        rows.append(row)
+    _print_table(rows, out)
+
+
+def cmd_condensate(args, out):
+    if args.lag < 1:
+        raise ValueError(f"--lag {args.lag}: frames back, 1 or more")
+    frames = _frames(args)
+    geom = _geometry(args, frames[0])
+    rows = []
+    for k, fr in enumerate(frames):
+        row = {"step": fr.step, "time": fr.time}
+        arc = analysis.dense_arc(fr, geom, args.threshold, args.sectors)
+        if arc is not None:
+            at_start, at_stop = analysis.capping_rods(fr, geom, arc)
+            row.update(start_deg=float(np.degrees(arc.start)), width_deg=float(np.degrees(arc.width)),
+                       phi_inside=arc.fraction, phi_outside=arc.outside,
+                       rods_at_start=at_start, rods_at_stop=at_stop)
+            if k >= args.lag:
+                before = frames[k - args.lag]
+                earlier = analysis.dense_arc(before, geom, args.threshold, args.sectors)
+                if earlier is not None:
+                    row["drift_speed"] = (analysis.arc_drift(fr, before, geom, earlier)
+                                          / (fr.time - before.time))
         rows.append(row)
     _print_table(rows, out)
 
@@ -276,6 +300,13 @@ def build_parser():
     p.add_argument("--lag", type=int, default=1,
                    help="bead mobility (jammed) and rod drift (flock) against the frame this many frames earlier (0: none)")
     p.set_defaults(func=cmd_phase)
+
+    p = sub.add_parser("condensate", help="annulus: the dense arc, its drift round the ring, the rods pressing on its ends")
+    _add_dump_args(p)
+    p.add_argument("--threshold", type=float, default=0.8, help="bead area fraction of a dense sector")
+    p.add_argument("--sectors", type=int, default=72, help="angular sectors round the ring")
+    p.add_argument("--lag", type=int, default=1, help="drift against the frame this many frames earlier")
+    p.set_defaults(func=cmd_condensate)
 
     p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
     _add_dump_args(p)

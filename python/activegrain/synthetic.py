@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .geometry import Box
+from .geometry import Annulus, Box
 from .io import Frame
 
 ROD_LENGTH, ROD_TAIL, ROD_NOSE = 4.5, 1.1, 0.7
@@ -245,3 +245,27 @@ def persistent_walk(n_steps, dt, speed, tau, rng, start=(0.0, 0.0)):
     steps = speed * dt * 0.5 * (axes[1:] + axes[:-1])
     centres = np.asarray(start) + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
     return dt * np.arange(n_steps), centres, axes
+
+
+def trapped_condensate(turn=0.0):
+    """A condensate trapped between two opposed rows of rods (the paper's Fig. 3): in an
+    annulus of radii 15 and 28, beads dense for 0.3 < theta < 2.0 (sparse elsewhere), a radial
+    row of rods at theta 0.15 heading counter-clockwise and one at 2.15 heading clockwise. Returns the annulus and two frames 1 apart in time, between which the dense
+    beads (only) turn counter-clockwise by ``turn`` radians."""
+    box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
+    ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)
+    radii = np.arange(16.0, 27.5, 1.15)
+    rows = [(0.15, 1.0), (2.15, -1.0)]
+    centres = np.concatenate([np.column_stack([radii * np.cos(t), radii * np.sin(t)]) for t, _ in rows])
+    axes = np.concatenate([np.tile([-s * np.sin(t), s * np.cos(t)], (len(radii), 1)) for t, s in rows])
+    pts = lattice_beads(-30, 30, -30, 30, 1.0)
+    r, th = ann.polar(pts)
+    dense = (th > 0.3) & (th < 2.0)
+    keep = (r > 15.5) & (r < 27.5) & (dense | ((th > 2.3) & (th < 6.1) & (np.arange(len(pts)) % 4 == 0)))
+    beads = remove_overlaps(pts[keep], box, centres, axes)
+    before = make_frame(box, beads, 0.5, centres, axes, time=0.0)
+    _, th = ann.polar(beads)
+    c, s = np.cos(turn), np.sin(turn)
+    moved = np.where(((th > 0.3) & (th < 2.0))[:, None], beads @ np.array([[c, s], [-s, c]]), beads)
+    after = make_frame(box, moved, 0.5, centres, axes, time=1.0)
+    return ann, before, after

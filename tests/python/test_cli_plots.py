@@ -187,3 +187,22 @@ def test_annulus_geometry_on_the_command_line(tmp_path):
     assert float(vals["layer_contrast"]) > 0
     rc, text = run(["phase", str(dump), "--geometry", "annulus"])
     assert rc == 1  # an annulus needs its radius
+
+
+def test_condensate_command(tmp_path):
+    ann, before, after = S.trapped_condensate(turn=0.02)
+    dump = tmp_path / "trap.dump"
+    before.step, after.step = 0, 10000
+    write_dump(dump, [before.scaled(1e-3), after.scaled(1e-3)])
+    rc, text = run(["condensate", str(dump), "--geometry", "annulus", "--centre", "0", "0", "--r-in", "15e-3",
+                    "--r-out", "28e-3", "--length-unit", "1e-3", "--timestep", "1e-4", "--threshold", "0.6"])
+    assert rc == 0, text
+    head, first, second = text.splitlines()
+    row = dict(zip(head.split(), second.split()))
+    assert float(row["time"]) == pytest.approx(1.0)
+    assert (int(row["rods_at_start"]), int(row["rods_at_stop"])) == (10, 10)
+    assert float(row["drift_speed"]) == pytest.approx(0.02 * 21.5, rel=0.05)  # d per s
+    assert float(row["width_deg"]) == pytest.approx(np.degrees(1.7), abs=10)
+    assert dict(zip(head.split(), first.split()))["drift_speed"] == "nan"  # no earlier frame
+    rc, _ = run(["condensate", str(dump), "--length-unit", "1e-3", "--r-out", "28e-3", "--lag", "0"])
+    assert rc == 1

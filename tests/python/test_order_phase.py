@@ -382,3 +382,34 @@ def test_aligned_rods_held_still_are_not_a_flock():
     # without a previous frame there is no drift to decide on: polar order alone decides
     assert np.isnan(A.classify_phase(fr, g).observables["rod_drift"])
     assert A.classify_phase(fr, g).phase == "flock"
+
+
+def test_dense_arc_its_drift_and_the_rods_capping_it():
+    ann, before, after = S.trapped_condensate(turn=0.02)
+    arc = A.dense_arc(before, ann, threshold=0.6, sectors=72)
+    step = 2 * np.pi / 72
+    assert arc.start == pytest.approx(0.3, abs=step) and arc.stop == pytest.approx(2.0, abs=step)
+    assert arc.fraction > 0.65 and arc.outside < 0.3
+    assert A.capping_rods(before, ann, arc) == (10, 10)
+    # rotated by 0.02 rad counter-clockwise: arc length 0.02 at the mid radius 21.5
+    assert A.arc_drift(after, before, ann, arc) == pytest.approx(0.02 * 21.5, rel=0.05)
+    held = A.arc_drift(before, before, ann, arc)
+    assert held == 0.0
+    # an arc on the sparse side holds beads that did not move
+    assert A.arc_drift(after, before, ann, A.Arc(3.0, 1.0, 0.2, 0.5)) == 0.0
+    # reversed rods cap nothing
+    flipped = S.make_frame(before.box, before.beads()[0], 0.5, before.rods().centre, -before.rods().axis)
+    assert A.capping_rods(flipped, ann, arc) == (0, 0)
+
+
+def test_dense_arc_wraps_round_and_needs_an_annulus():
+    ann, before, _ = S.trapped_condensate()
+    xy = before.beads()[0]
+    turned = xy @ np.array([[np.cos(5.0), np.sin(5.0)], [-np.sin(5.0), np.cos(5.0)]])  # dense 5.3 to 7.0
+    fr = S.make_frame(before.box, turned, 0.5)
+    arc = A.dense_arc(fr, ann, threshold=0.6)
+    assert arc.contains(0.0) and arc.contains(5.5) and not arc.contains(3.0)
+    assert arc.width == pytest.approx(1.7, abs=2 * np.pi / 72)
+    assert A.dense_arc(fr, ann, threshold=0.99) is None
+    with pytest.raises(ValueError, match="only for an annulus"):
+        A.dense_arc(fr, geometry_from_box(S.channel_box(40, 10)))
