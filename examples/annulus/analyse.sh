@@ -6,7 +6,8 @@
 # as the annulus of radius R_OUT (its lobes are drawn and binned as if cut off).
 # Writes snapshot.png (last frame), profile_r.png/.txt (radial), profile_theta.png/.txt (angular),
 # kymograph.png (bead area fraction against angle and time), polar.txt (rod order per frame, with
-# the tangential order) and phase.txt (phase per frame).
+# the tangential order), phase.txt (phase per frame) and condensate.txt (the dense arc, its drift
+# round the ring and the rods pressing on its ends, per frame: the trap of the paper's Fig. 3).
 set -euo pipefail
 # DT: the run's time step (the deck's default, or what -var dt gave it), for times in seconds
 out=${1:?usage: analyse.sh OUTDIR [R_IN R_OUT]}
@@ -24,3 +25,4 @@ done
 ag kymograph "$dump" "${common[@]}" --coord theta -o "$out/kymograph.png"
 ag phase "$dump" "${common[@]}" --every 10 > "$out/phase.txt"
 ag polar "$dump" "${common[@]}" --every 10 > "$out/polar.txt"
+ag condensate "$dump" "${common[@]}" > "$out/condensate.txt"
