@@ -17,7 +17,7 @@ of two ways (``count``):
 The two agree on any bin much larger than a particle, up to the particles cut by its edges.
 """
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy import ndimage
@@ -609,9 +609,16 @@ class Arc:
 def dense_arc(frame, annulus, threshold=0.8, sectors=72):
     """The condensate of an annulus: the widest run of adjacent angular sectors (``sectors`` of
     them round the ring) whose bead area fraction exceeds ``threshold``, as an :class:`Arc`;
-    None if no sector does."""
+    None if no sector does. Beads whose centres lie beyond ``r_out`` (in the lobes of a
+    scalloped wall) are left out, so that every sector is the same piece of ring."""
     if not isinstance(annulus, Annulus):
         raise ValueError("dense_arc: only for an annulus")
+    r, _ = annulus.polar(frame.pos[:, :2])
+    ring = ~(frame.is_bead & (r > annulus.r_out))
+    if not ring.all():
+        frame = replace(frame, **{k: getattr(frame, k)[ring] for k in
+                                  ("ids", "mol", "types", "radius", "pos", "vel", "body")
+                                  if getattr(frame, k) is not None})
     prof = area_fraction_profile(frame, annulus, "theta", sectors)
     dense = prof.fraction > threshold
     if not dense.any():

@@ -411,5 +411,9 @@ def test_dense_arc_wraps_round_and_needs_an_annulus():
     assert arc.contains(0.0) and arc.contains(5.5) and not arc.contains(3.0)
     assert arc.width == pytest.approx(1.7, abs=2 * np.pi / 72)
     assert A.dense_arc(fr, ann, threshold=0.99) is None
+    # beads in the lobes of a scalloped wall (centres beyond r_out) are not the ring's
+    lobe = np.array([[29.0 * np.cos(a), 29.0 * np.sin(a)] for a in np.linspace(3.2, 3.4, 8)])
+    lobed = S.make_frame(before.box, np.concatenate([turned, lobe]), 0.5)
+    assert A.dense_arc(lobed, ann, threshold=0.6) == arc
     with pytest.raises(ValueError, match="only for an annulus"):
         A.dense_arc(fr, geometry_from_box(S.channel_box(40, 10)))
