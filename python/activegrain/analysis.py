@@ -583,7 +583,6 @@ def layer_side_mobility(frame, previous, geometry, layer=None, window=5.0):
     return out
 
 
-
 @dataclass
 class Arc:
     """An arc of an annulus: from angle ``start`` counter-clockwise over ``width`` (radians),

@@ -130,21 +130,20 @@ def cmd_condensate(args, out):
         raise ValueError(f"--lag {args.lag}: frames back, 1 or more")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
+    arcs = [analysis.dense_arc(fr, geom, args.threshold, args.sectors) for fr in frames]
     rows = []
-    for k, fr in enumerate(frames):
+    for k, (fr, arc) in enumerate(zip(frames, arcs)):
         row = {"step": fr.step, "time": fr.time}
-        arc = analysis.dense_arc(fr, geom, args.threshold, args.sectors)
         if arc is not None:
             at_start, at_stop = analysis.capping_rods(fr, geom, arc)
             row.update(start_deg=float(np.degrees(arc.start)), width_deg=float(np.degrees(arc.width)),
                        phi_inside=arc.fraction, phi_outside=arc.outside,
                        rods_at_start=at_start, rods_at_stop=at_stop)
-            if k >= args.lag:
+            # the drift of the beads that were in the earlier frame's arc
+            if k >= args.lag and arcs[k - args.lag] is not None:
                 before = frames[k - args.lag]
-                earlier = analysis.dense_arc(before, geom, args.threshold, args.sectors)
-                if earlier is not None:
-                    row["drift_speed"] = (analysis.arc_drift(fr, before, geom, earlier)
-                                          / (fr.time - before.time))
+                row["drift_speed"] = (analysis.arc_drift(fr, before, geom, arcs[k - args.lag])
+                                      / (fr.time - before.time))
         rows.append(row)
     _print_table(rows, out)
 

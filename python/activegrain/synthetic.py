@@ -250,8 +250,9 @@ def persistent_walk(n_steps, dt, speed, tau, rng, start=(0.0, 0.0)):
 def trapped_condensate(turn=0.0):
     """A condensate trapped between two opposed rows of rods (the paper's Fig. 3): in an
     annulus of radii 15 and 28, beads dense for 0.3 < theta < 2.0 (sparse elsewhere), a radial
-    row of rods at theta 0.15 heading counter-clockwise and one at 2.15 heading clockwise. Returns the annulus and two frames 1 apart in time, between which the dense
-    beads (only) turn counter-clockwise by ``turn`` radians."""
+    row of rods at theta 0.15 heading counter-clockwise and one at 2.15 heading clockwise.
+    Returns the annulus and two frames 1 apart in time, between which the dense beads (only)
+    turn counter-clockwise by ``turn`` radians."""
     box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
     ann = Annulus(box, (0.0, 0.0), 15.0, 28.0)
     radii = np.arange(16.0, 27.5, 1.15)
