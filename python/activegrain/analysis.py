@@ -650,16 +650,17 @@ def arc_drift(frame, previous, annulus, arc):
     return float(np.mean(turned) * annulus.length_per_unit("theta"))
 
 
-def capping_rods(frame, annulus, arc, reach=None):
-    """The rods that press on the ends of ``arc``: centres within ``reach`` (arc length at the
-    mid radius; default one median rod length) of an end, on either side of it, heading into
-    the arc (tangential component of the axis above 0.5). Returns ``(at_start, at_stop)``:
+def capping_rods(frame, annulus, arc, reach=1.0):
+    """The rods that press on the ends of ``arc``: centres within ``reach`` median rod lengths
+    (arc length at the mid radius) of an end, on either side of it, heading into the arc
+    (tangential component of the axis above 0.5). A layer pushes through the arc's less
+    dense edge, so it can sit more than one rod length from the arc's end. Returns ``(at_start, at_stop)``:
     counter-clockwise rods at the start, clockwise ones at the stop. Both non-zero: the two
     opposed layers of the paper's trap (Fig. 3)."""
     rods = frame.rods()
     if len(rods.ids) == 0:
         return 0, 0
-    reach = float(np.median(rods.length)) if reach is None else reach
+    reach = reach * float(np.median(rods.length))
     _, theta = annulus.polar(rods.centre)
     heading = np.sum(rods.axis * annulus.tangent(rods.centre), axis=1)
     radius = annulus.length_per_unit("theta")

@@ -128,6 +128,8 @@ def cmd_phase(args, out):
 def cmd_condensate(args, out):
     if args.lag < 1:
         raise ValueError(f"--lag {args.lag}: frames back, 1 or more")
+    if args.reach <= 0:
+        raise ValueError(f"--reach {args.reach}: rod lengths, above 0")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
     arcs = [analysis.dense_arc(fr, geom, args.threshold, args.sectors) for fr in frames]
@@ -135,7 +137,7 @@ def cmd_condensate(args, out):
     for k, (fr, arc) in enumerate(zip(frames, arcs)):
         row = {"step": fr.step, "time": fr.time}
         if arc is not None:
-            at_start, at_stop = analysis.capping_rods(fr, geom, arc)
+            at_start, at_stop = analysis.capping_rods(fr, geom, arc, args.reach)
             row.update(start_deg=float(np.degrees(arc.start)), width_deg=float(np.degrees(arc.width)),
                        phi_inside=arc.fraction, phi_outside=arc.outside,
                        rods_at_start=at_start, rods_at_stop=at_stop)
@@ -305,6 +307,8 @@ def build_parser():
     p.add_argument("--threshold", type=float, default=0.8, help="bead area fraction of a dense sector")
     p.add_argument("--sectors", type=int, default=72, help="angular sectors round the ring")
     p.add_argument("--lag", type=int, default=1, help="drift against the frame this many frames earlier")
+    p.add_argument("--reach", type=float, default=1.0,
+                   help="rods pressing on an end: centres within this many rod lengths of it")
     p.set_defaults(func=cmd_condensate)
 
     p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
