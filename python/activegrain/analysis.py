@@ -654,9 +654,9 @@ def capping_rods(frame, annulus, arc, reach=1.0):
     """The rods that press on the ends of ``arc``: centres within ``reach`` median rod lengths
     (arc length at the mid radius) of an end, on either side of it, heading into the arc
     (tangential component of the axis above 0.5). A layer pushes through the arc's less
-    dense edge, so it can sit more than one rod length from the arc's end. Returns ``(at_start, at_stop)``:
-    counter-clockwise rods at the start, clockwise ones at the stop. Both non-zero: the two
-    opposed layers of the paper's trap (Fig. 3)."""
+    dense edge, so it can sit more than one rod length from the arc's end. Returns
+    ``(at_start, at_stop)``: counter-clockwise rods at the start, clockwise ones at the stop.
+    Both non-zero: the two opposed layers of the paper's trap (Fig. 3)."""
     rods = frame.rods()
     if len(rods.ids) == 0:
         return 0, 0

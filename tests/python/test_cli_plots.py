@@ -204,10 +204,11 @@ def test_condensate_command(tmp_path):
     assert float(row["drift_speed"]) == pytest.approx(0.02 * 21.5, rel=0.05)  # d per s
     assert float(row["width_deg"]) == pytest.approx(np.degrees(1.7), abs=10)
     assert dict(zip(head.split(), first.split()))["drift_speed"] == "nan"  # no earlier frame
-    # the rows sit 3.2 d (two thirds of a rod) outside the arc's ends: a narrower reach misses them
+    # the rows sit 3.2 d (0.7 rod lengths) outside the arc's ends: a narrower reach misses them
     rc, text = run(["condensate", str(dump), "--geometry", "annulus", "--centre", "0", "0", "--r-in", "15e-3",
                     "--r-out", "28e-3", "--length-unit", "1e-3", "--timestep", "1e-4", "--threshold", "0.6",
                     "--reach", "0.4"])
+    assert rc == 0, text
     row = dict(zip(head.split(), text.splitlines()[2].split()))
     assert (int(row["rods_at_start"]), int(row["rods_at_stop"])) == (0, 0)
     rc, _ = run(["condensate", str(dump), "--length-unit", "1e-3", "--r-out", "28e-3", "--lag", "0"])
