@@ -5,6 +5,8 @@
 
 namespace ActiveGrain {
 
+constexpr double PI = 3.14159265358979323846;
+
 struct Vec3 {
   double x = 0.0, y = 0.0, z = 0.0;
 

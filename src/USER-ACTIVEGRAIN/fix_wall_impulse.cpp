@@ -242,7 +242,7 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
     const Vec3 centre(x[i]);
     const double r = radius[i];
     auto may_close = [&](double gap, double wall_vz) {
-      return gap < reach && gap_may_close(gap, Vec3(v[i]) - Vec3(0, 0, wall_vz), spin_speed[i], dt);
+      return gap < reach && ActiveGrain::gap_may_close(gap, Vec3(v[i]) - Vec3(0, 0, wall_vz), spin_speed[i], dt);
     };
     // Most atoms are out of reach of a plate within a step: the surface's bounds (its largest
     // height, its steepest tilt) tell so from the centre's height above the mean plane alone,

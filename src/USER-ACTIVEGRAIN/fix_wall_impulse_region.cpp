@@ -117,7 +117,7 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
       if (moving) region->velocity_contact(&wall_velocity.x, xbox, ic);
       note_wall_speed(norm(wall_velocity));
       const double gap = rc.r - radius[i];
-      if (!gap_may_close(gap, Vec3(v[i]) - wall_velocity, spin_speed[i], update->dt)) continue;
+      if (!ActiveGrain::gap_may_close(gap, Vec3(v[i]) - wall_velocity, spin_speed[i], update->dt)) continue;
       contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], gap, wall_velocity, Vec3(),
                           materials.of_type(type[i])});
     }

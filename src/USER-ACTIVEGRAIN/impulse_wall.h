@@ -4,6 +4,7 @@
 // solves wall and particle contacts together.
 #pragma once
 
+#include "ag_contact_prediction.h"
 #include "ag_impulse.h"
 #include "fix.h"
 
@@ -13,16 +14,6 @@
 #include <vector>
 
 namespace LAMMPS_NS {
-
-// Whether a gap between surfaces (< 0: an overlap) can close within dt: faster than the centres'
-// relative speed plus the surface speeds of the spins it cannot. Contacts it rules out are left
-// out before bodies are built (pair gran/impulse and the wall fixes).
-inline bool gap_may_close(double gap, const ActiveGrain::Vec3 &relative_velocity, double spin_speeds, double dt)
-{
-  if (gap <= 0.0) return true;
-  const double slack = gap / dt - spin_speeds;
-  return slack < 0.0 || slack * slack < norm2(relative_velocity);
-}
 
 class ImpulseWall {
  public:
