@@ -1,29 +1,8 @@
 #include "ag_contact_prediction.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace ActiveGrain {
-
-namespace {
-
-// stays_open() leaves to predict_contact() the contacts that close or stay open by less than this
-// fraction of their gap and travel: the atoms' and the bodies' velocities differ by round-off.
-constexpr double ROUNDOFF_MARGIN = 1e-6;
-
-}    // namespace
-
-bool gap_may_close(double gap, const Vec3 &relative_velocity, double spin_speeds, double dt)
-{
-  if (gap <= 0.0) return true;
-  const double slack = gap / dt - spin_speeds;
-  return slack < 0.0 || slack * slack < norm2(relative_velocity);
-}
-
-bool stays_open(double gap, const Vec3 &u, const Vec3 &n, double dt)
-{
-  return gap + dot(u, n) * dt > ROUNDOFF_MARGIN * (std::fabs(gap) + norm(u) * dt);
-}
 
 ContactPrediction predict_contact(double gap, const Vec3 &u, const Vec3 &n, double dt, double beta,
                                   const Vec3 &atom_acceleration, const Vec3 &wall_acceleration)

@@ -9,17 +9,31 @@
 
 #include "ag_math.h"
 
+#include <cmath>
+
 namespace ActiveGrain {
 
 // Whether a gap between surfaces (< 0: an overlap) can close within dt: faster than the centres'
 // relative speed plus the surface speeds of the spins it cannot. A cheap test on atoms alone,
-// before any body is built.
-bool gap_may_close(double gap, const Vec3 &relative_velocity, double spin_speeds, double dt);
+// before any body is built (inline: it runs once per near pair).
+inline bool gap_may_close(double gap, const Vec3 &relative_velocity, double spin_speeds, double dt)
+{
+  if (gap <= 0.0) return true;
+  const double slack = gap / dt - spin_speeds;
+  return slack < 0.0 || slack * slack < norm2(relative_velocity);
+}
+
+// stays_open() leaves to predict_contact() the contacts that close or stay open by less than this
+// fraction of their gap and travel: the atoms' and the bodies' velocities differ by round-off.
+constexpr double ROUNDOFF_MARGIN = 1e-6;
 
 // Whether a gap surely stays open through the step at relative velocity u along normal n (from
 // surface 1 to surface 2, u = v2 - v1): the closing test of predict_contact with a margin for the
 // round-off between the atoms' velocities and their bodies'.
-bool stays_open(double gap, const Vec3 &u, const Vec3 &n, double dt);
+inline bool stays_open(double gap, const Vec3 &u, const Vec3 &n, double dt)
+{
+  return gap + dot(u, n) * dt > ROUNDOFF_MARGIN * (std::fabs(gap) + norm(u) * dt);
+}
 
 struct ContactPrediction {
   bool closes = false;             // the gap closes within the step, or overlaps
