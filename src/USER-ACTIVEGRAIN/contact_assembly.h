@@ -1,0 +1,113 @@
+// This step's contacts for pair gran/impulse, from LAMMPS's arrays to the contact solver: the
+// near pairs and the wall fixes' contacts whose gaps close within the step (predictive contact),
+// each with its bodies, lever arms and material, handed to the solver in an order given by the
+// contacts' identity, and what each solver contact means for the atoms.
+#pragma once
+
+#include "ag_contact_prediction.h"
+#include "ag_contact_solver.h"
+#include "impulse_wall.h"
+#include "pointers.h"
+
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class ContactRanks;
+class NearPairs;
+class SolverBodies;
+
+// Order in which contacts are visited: a hash of the step and the contact's identity (default),
+// or their identity (wall, surface, atom tags) ascending or descending.
+enum class ContactOrder { SHUFFLE, TAG, REVERSE };
+
+class ContactAssembly : protected Pointers {
+ public:
+  // One contact as LAMMPS sees it: which atoms get the impulse and where.
+  struct AtomContact {
+    int atom1;                            // -1 for a wall
+    int atom2;
+    ImpulseWall *wall;                    // the wall fix for wall contacts
+    int surface;
+    ActiveGrain::Vec3 point;
+    ActiveGrain::Vec3 velocity_before;    // relative velocity at the contact before the solve
+    double approach;                      // normal approach speed when it closes (>= 0)
+    ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes
+  };
+  // What the atoms did at the step's start: largest |v| + |omega| r of owned atoms and of owned
+  // and ghost atoms, largest speed of a wall, largest excess of an owned atom's radius over its
+  // type's neighbor-cutoff radius, and largest overlap of a contact.
+  struct StepExtremes {
+    double fastest = 0.0, fastest_near = 0.0, wall_speed = 0.0, radius_excess = 0.0, overlap = 0.0;
+  };
+
+  ContactAssembly(LAMMPS *lmp, ActiveGrain::ContactSolver &solver, SolverBodies &bodies,
+                  const ContactRanks &ranks, NearPairs &near) :
+      Pointers(lmp), solver(solver), bodies(bodies), ranks(ranks), near(near)
+  {
+  }
+
+  // The pair style's settings and coefficients (per type pair), and the wall fixes.
+  void init(double beta, ContactOrder order, double **restitution, double **friction,
+            const std::vector<ImpulseWall *> &walls);
+  // Each atom's spin speed and this step's extremes; maxrad: the neighbor-cutoff radius per type.
+  void scan_atoms(const double *maxrad);
+  // The step's contacts, into the (cleared) solver in their order.
+  void assemble(class NeighList *list);
+
+  const AtomContact &atoms_of(int c) const { return atom_contacts[c]; }
+  const StepExtremes &extremes() const { return step; }
+  double memory_usage() const;
+
+ private:
+  // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
+  using ContactIdentity = std::tuple<int, int, tagint, tagint>;
+  // A contact found this step, before it goes to the solver. Contacts are solved in an order
+  // given by their identity (and, shuffled, the step), not by the order ranks find them, so that
+  // a body solved on one rank sees the same order on any number of ranks.
+  struct FoundContact {
+    std::uint64_t shuffle;
+    ContactIdentity identity;
+    int body1, body2;
+    ActiveGrain::Vec3 r1, r2, n;
+    ActiveGrain::ContactMaterial material;
+    ActiveGrain::ContactPrediction prediction;
+    AtomContact atoms;
+  };
+  // Where a found contact goes in the order (shuffle 0 unless shuffled).
+  struct SortKey {
+    std::uint64_t shuffle;
+    ContactIdentity identity;
+    int index;    // in found
+  };
+
+  void gather_pair_contacts(class NeighList *list);
+  void gather_wall_contacts();
+  void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
+                   double gap, const ActiveGrain::ContactMaterial &material,
+                   const ActiveGrain::Vec3 &r1, const ActiveGrain::Vec3 &r2,
+                   const ActiveGrain::Vec3 &atom_acceleration,
+                   const ActiveGrain::Vec3 &wall_acceleration = ActiveGrain::Vec3());
+  ContactIdentity identity_of(const AtomContact &atoms) const;
+  void add_found_contacts();
+
+  ActiveGrain::ContactSolver &solver;
+  SolverBodies &bodies;
+  const ContactRanks &ranks;
+  NearPairs &near;
+  double beta = 0.0;    // overlaps leave at >= beta * overlap / dt
+  ContactOrder order = ContactOrder::SHUFFLE;
+  double **restitution = nullptr, **friction = nullptr;
+  std::vector<ImpulseWall *> walls;
+
+  std::vector<double> spin_speed;    // |omega| radius of each atom, this step
+  StepExtremes step;
+  std::vector<FoundContact> found;
+  std::vector<SortKey> sort_keys;
+  std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
+  std::vector<ImpulseWall::Contact> wall_contacts;
+};
+
+}    // namespace LAMMPS_NS
