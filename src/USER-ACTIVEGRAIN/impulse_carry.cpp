@@ -17,7 +17,7 @@ void ImpulseCarry::init()
   pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
     pending = dynamic_cast<FixStoreAtom *>(
-        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, static_cast<int>(NUM_COLUMNS))));
+        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, static_cast<int>(NUM_SAVED))));
 }
 
 void ImpulseCarry::destroy()
@@ -33,11 +33,11 @@ void ImpulseCarry::store(const ImpulseDelivery &delivery)
   for (int i = 0; i < atom->nlocal; i++) {
     const double *sums = delivery.sums_of(i);
     for (int k = 0; k < 3; k++) {
-      saved[i][FORCE + k] = sums[ImpulseDelivery::FORCE + k];
-      saved[i][TORQUE + k] = sums[ImpulseDelivery::TORQUE + k];
+      saved[i][SAVED_FORCE + k] = sums[ImpulseDelivery::FORCE + k];
+      saved[i][SAVED_TORQUE + k] = sums[ImpulseDelivery::TORQUE + k];
     }
-    saved[i][DT] = dt;
-    saved[i][STEP] = step;
+    saved[i][SAVED_DT] = dt;
+    saved[i][SAVED_STEP] = step;
   }
   force_dt = dt;
 }
@@ -47,12 +47,12 @@ void ImpulseCarry::restore(ImpulseDelivery &delivery)
   double **saved = pending->astore;
   const double step = (double) update->ntimestep, dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++)
-    if (saved[i][STEP] == step) {
+    if (saved[i][SAVED_STEP] == step) {
       double *sums = delivery.sums_of(i);
-      const double scale = saved[i][DT] / dt;    // exactly 1 for the same time step
+      const double scale = saved[i][SAVED_DT] / dt;    // exactly 1 for the same time step
       for (int k = 0; k < 3; k++) {
-        sums[ImpulseDelivery::FORCE + k] = saved[i][FORCE + k] * scale;
-        sums[ImpulseDelivery::TORQUE + k] = saved[i][TORQUE + k] * scale;
+        sums[ImpulseDelivery::FORCE + k] = saved[i][SAVED_FORCE + k] * scale;
+        sums[ImpulseDelivery::TORQUE + k] = saved[i][SAVED_TORQUE + k] * scale;
       }
     }
   force_dt = dt;
@@ -66,12 +66,12 @@ void ImpulseCarry::rescale_for_dt()
   double **f = atom->f, **torque = atom->torque, **saved = pending->astore;
   const double step = (double) update->ntimestep;
   for (int i = 0; i < atom->nlocal; i++)
-    if (saved[i][STEP] == step) {
+    if (saved[i][SAVED_STEP] == step) {
       // J = saved force times its time step
-      const double change = saved[i][DT] * (1.0 / update->dt - 1.0 / force_dt);
+      const double change = saved[i][SAVED_DT] * (1.0 / update->dt - 1.0 / force_dt);
       for (int k = 0; k < 3; k++) {
-        f[i][k] += saved[i][FORCE + k] * change;
-        torque[i][k] += saved[i][TORQUE + k] * change;
+        f[i][k] += saved[i][SAVED_FORCE + k] * change;
+        torque[i][k] += saved[i][SAVED_TORQUE + k] * change;
       }
     }
   force_dt = update->dt;

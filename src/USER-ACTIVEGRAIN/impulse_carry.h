@@ -30,7 +30,7 @@ class ImpulseCarry : protected Pointers {
  private:
   // Columns of the store: the force and torque of the step's contacts, the time step they belong
   // to (their impulse is force times it: a time step change keeps the impulse), and the step.
-  enum Column { FORCE = 0, TORQUE = 3, DT = 6, STEP, NUM_COLUMNS };
+  enum SavedColumn { SAVED_FORCE = 0, SAVED_TORQUE = 3, SAVED_DT = 6, SAVED_STEP, NUM_SAVED };
 
   class FixStoreAtom *pending = nullptr;
   double force_dt = 0.0;    // time step of the contact forces now in atom->f (0: none)
