@@ -12,7 +12,7 @@ using namespace LAMMPS_NS;
 
 static const char *const PENDING_ID = "AG_GRAN_IMPULSE_DUE";
 
-void ImpulseCarry::init()
+void ImpulseCarry::create_store()
 {
   pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
@@ -20,7 +20,7 @@ void ImpulseCarry::init()
         modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, static_cast<int>(NUM_SAVED))));
 }
 
-void ImpulseCarry::destroy()
+void ImpulseCarry::delete_store()
 {
   if (pending) modify->delete_fix(PENDING_ID);
   pending = nullptr;

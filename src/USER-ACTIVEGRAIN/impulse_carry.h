@@ -15,8 +15,8 @@ class ImpulseCarry : protected Pointers {
   explicit ImpulseCarry(LAMMPS *lmp) : Pointers(lmp) {}
 
   // The per-atom store (a fix STORE/ATOM, found again after a restart).
-  void init();
-  void destroy();
+  void create_store();
+  void delete_store();
   // The forces of this step's contacts, as they were added to the atoms.
   void store(const ImpulseDelivery &delivery);
   // At a run's setup: the forces still due from the step the run continues from (if any), as

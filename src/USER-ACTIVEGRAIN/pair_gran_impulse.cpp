@@ -55,7 +55,7 @@ PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
 
 PairGranImpulse::~PairGranImpulse()
 {
-  carry.destroy();
+  carry.delete_store();
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -145,7 +145,7 @@ void PairGranImpulse::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "{} requires ghost atoms to store velocity: use comm_modify vel yes", STYLE);
   refuse_unsupported();
-  carry.init();
+  carry.create_store();
   find_fixes();
   request_neighbors();
   find_type_radii();
