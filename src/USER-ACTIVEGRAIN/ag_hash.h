@@ -26,10 +26,16 @@ inline std::uint64_t hash_words(std::initializer_list<std::uint64_t> words)
   return h;
 }
 
-// A uniform number in [-1, 1) from a hash (its top 53 bits).
+// A double holds 53 significant bits: the top 53 bits of a 64-bit hash, times 2^-53, are exactly
+// representable and uniform in [0, 1).
+constexpr int HASH_BITS = 64;
+constexpr int SIGNIFICAND_BITS = 53;
+constexpr double SIGNIFICAND_SCALE = 0x1.0p-53;    // 2^-SIGNIFICAND_BITS
+
+// A uniform number in [-1, 1) from a hash (its top SIGNIFICAND_BITS bits).
 inline double uniform_symmetric(std::uint64_t h)
 {
-  return 2.0 * static_cast<double>(h >> 11) * 0x1.0p-53 - 1.0;
+  return 2.0 * static_cast<double>(h >> (HASH_BITS - SIGNIFICAND_BITS)) * SIGNIFICAND_SCALE - 1.0;
 }
 
 // A map from 64-bit keys to non-negative ints that keeps its storage from one use to the next
@@ -41,42 +47,48 @@ class KeyIndex {
   // The value stored at key; if there is none, make() is stored and returned.
   template <class Make> int find_or_insert(std::uint64_t key, Make make)
   {
-    if (2 * (used_.size() + 1) > keys_.size()) grow();
-    std::size_t slot = mix64(key) & (keys_.size() - 1);
-    while (values_[slot] >= 0) {
-      if (keys_[slot] == key) return values_[slot];
-      slot = (slot + 1) & (keys_.size() - 1);
+    if (SLOTS_PER_KEY * (used.size() + 1) > keys.size()) grow();
+    std::size_t slot = mix64(key) & (keys.size() - 1);
+    while (values[slot] >= 0) {
+      if (keys[slot] == key) return values[slot];
+      slot = (slot + 1) & (keys.size() - 1);
     }
     const int value = make();
-    keys_[slot] = key;
-    values_[slot] = value;
-    used_.push_back(slot);
+    keys[slot] = key;
+    values[slot] = value;
+    used.push_back(slot);
     return value;
   }
   void clear()
   {
-    for (const std::size_t slot : used_) values_[slot] = -1;
-    used_.clear();
+    for (const std::size_t slot : used) values[slot] = FREE;
+    used.clear();
   }
 
  private:
+  // The table is at most half full, so probe runs stay short; its size is a power of two (it
+  // doubles from INITIAL_SLOTS), so a slot is found by masking.
+  static constexpr std::size_t SLOTS_PER_KEY = 2;
+  static constexpr std::size_t INITIAL_SLOTS = 64;
+  static constexpr int FREE = -1;    // marks an empty slot: stored values are >= 0
+
   void grow()
   {
-    std::vector<std::uint64_t> keys;
-    std::vector<int> values;
-    keys.swap(keys_);
-    values.swap(values_);
-    const std::size_t size = keys.empty() ? 64 : 2 * keys.size();
-    keys_.assign(size, 0);
-    values_.assign(size, -1);
-    used_.clear();
-    for (std::size_t slot = 0; slot < keys.size(); slot++)
-      if (values[slot] >= 0) find_or_insert(keys[slot], [&] { return values[slot]; });
+    std::vector<std::uint64_t> old_keys;
+    std::vector<int> old_values;
+    old_keys.swap(keys);
+    old_values.swap(values);
+    const std::size_t size = old_keys.empty() ? INITIAL_SLOTS : 2 * old_keys.size();
+    keys.assign(size, 0);
+    values.assign(size, FREE);
+    used.clear();
+    for (std::size_t slot = 0; slot < old_keys.size(); slot++)
+      if (old_values[slot] >= 0) find_or_insert(old_keys[slot], [&] { return old_values[slot]; });
   }
 
-  std::vector<std::uint64_t> keys_;
-  std::vector<int> values_;    // -1: free
-  std::vector<std::size_t> used_;
+  std::vector<std::uint64_t> keys;
+  std::vector<int> values;
+  std::vector<std::size_t> used;    // the slots in use
 };
 
 }    // namespace ActiveGrain

@@ -10,12 +10,22 @@ namespace {
 // Substeps per compression (or restitution) phase when an impact is integrated; the phase
 // ends are found exactly within the last substep. A cap stops impacts whose normal velocity
 // cannot grow (Painleve-like configurations with large friction).
-constexpr int kSubsteps = 64;
-constexpr int kMaxSubsteps = 200 * kSubsteps;
+constexpr int SUBSTEPS = 64;
+constexpr int MAX_PHASE_LENGTHS = 200;    // the cap, in units of SUBSTEPS
+constexpr int MAX_SUBSTEPS = MAX_PHASE_LENGTHS * SUBSTEPS;
 
 // Slip is "constant in direction" when the post-impact slip is within this cosine tolerance of
 // the initial one.
-constexpr double kDirectionTolerance = 1.0e-9;
+constexpr double DIRECTION_TOLERANCE = 1.0e-9;
+
+// Once a stuck contact stays stuck, u is linear in p: a substep grows to this many times the
+// impulse that changes u.n by |u.n| + |u| + the separation target, more than any remaining
+// phase needs (its end is still found exactly within the substep).
+constexpr double STUCK_STEP_MARGIN = 4.0;
+
+// The tangent frame is built from the x axis, or from the y axis where n is within 53 degrees of
+// x (|n.x| >= 0.6): the cross product with n stays far from zero.
+constexpr double AXIS_CHOICE_COSINE = 0.6;
 
 // Integrate the impact in impulse space with the normal impulse p as the independent variable.
 // Compression lasts while u.n < 0 and the normal impulse does work W_c < 0 then; restitution
@@ -47,14 +57,14 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
   const double slip = norm(u0 - n * un0);
   const double normal_scale = std::max(std::fabs(un0), target_separation) / knn;
   const double slip_scale = mu > 0.0 ? slip / (mu * ktt) : 0.0;
-  double dp = std::max(normal_scale, slip_scale) / kSubsteps;
+  double dp = std::max(normal_scale, slip_scale) / SUBSTEPS;
 
   Vec3 u = u0, J;
   double work_compression = 0.0, work_restitution = 0.0;
   ImpactPhase phase = un0 < 0.0 ? ImpactPhase::COMPRESSION : ImpactPhase::SEPARATION;
   const double excess = un0 < 0.0 ? std::max(0.0, target_separation + un0) : 0.0;
   double separation_end = target_separation;    // u.n at which the separation phase ends
-  for (int step = 0; step < kMaxSubsteps; ++step) {
+  for (int step = 0; step < MAX_SUBSTEPS; ++step) {
     bool stuck = false;
     const Vec3 dJ = n * dp + tangential.friction(u, mu, dp, stuck);
     const Vec3 du = K * dJ;
@@ -94,7 +104,7 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
     // stays stuck (K is constant) and u is linear in p: one substep can then cover each
     // remaining phase, ended exactly as above.
     if (stuck && dun > 0.0 && tangential.sticking_ratio() <= mu)
-      dp = std::max(dp, 4.0 * (std::fabs(dot(u, n)) + separation_end + norm(u)) * dp / dun);
+      dp = std::max(dp, STUCK_STEP_MARGIN * (std::fabs(dot(u, n)) + separation_end + norm(u)) * dp / dun);
     if (phase_ends) {
       if (phase == ImpactPhase::SEPARATION) break;
       phase = phase == ImpactPhase::COMPRESSION && e_work > 0.0 && work_compression < 0.0
@@ -132,35 +142,35 @@ double energetic_restitution(double un, double target_separation)
 
 }    // namespace
 
-TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n) : n_(n)
+TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n) : normal(n)
 {
-  const Vec3 a = std::fabs(n.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  t1_ = cross(n, a);
-  t1_ = t1_ / norm(t1_);
-  t2_ = cross(n, t1_);
-  const Vec3 Kt1 = K * t1_, Kt2 = K * t2_, Kn = K * n;
-  const double a11 = dot(t1_, Kt1), a12 = dot(t1_, Kt2), a22 = dot(t2_, Kt2);
+  const Vec3 a = std::fabs(n.x) < AXIS_CHOICE_COSINE ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  tangent1 = cross(n, a);
+  tangent1 = tangent1 / norm(tangent1);
+  tangent2 = cross(n, tangent1);
+  const Vec3 Kt1 = K * tangent1, Kt2 = K * tangent2, Kn = K * n;
+  const double a11 = dot(tangent1, Kt1), a12 = dot(tangent1, Kt2), a22 = dot(tangent2, Kt2);
   const double det = a11 * a22 - a12 * a12;
-  inv11_ = a22 / det;
-  inv12_ = -a12 / det;
-  inv22_ = a11 / det;
-  kn1_ = dot(t1_, Kn);
-  kn2_ = dot(t2_, Kn);
-  const double s1 = inv11_ * kn1_ + inv12_ * kn2_, s2 = inv12_ * kn1_ + inv22_ * kn2_;
-  sticking_ratio_ = std::sqrt(s1 * s1 + s2 * s2);
+  inv11 = a22 / det;
+  inv12 = -a12 / det;
+  inv22 = a11 / det;
+  kn1 = dot(tangent1, Kn);
+  kn2 = dot(tangent2, Kn);
+  const double s1 = inv11 * kn1 + inv12 * kn2, s2 = inv12 * kn1 + inv22 * kn2;
+  stick_ratio = std::sqrt(s1 * s1 + s2 * s2);
 }
 
 Vec3 TangentialStep::friction(const Vec3 &u, double mu, double dp, bool &stuck) const
 {
-  const double b1 = -dot(t1_, u) - dp * kn1_, b2 = -dot(t2_, u) - dp * kn2_;
-  const Vec3 stick = t1_ * (inv11_ * b1 + inv12_ * b2) + t2_ * (inv12_ * b1 + inv22_ * b2);
+  const double b1 = -dot(tangent1, u) - dp * kn1, b2 = -dot(tangent2, u) - dp * kn2;
+  const Vec3 stick = tangent1 * (inv11 * b1 + inv12 * b2) + tangent2 * (inv12 * b1 + inv22 * b2);
   const double stick_norm = norm(stick);
   const double limit = mu * dp;
   stuck = stick_norm <= limit;
   if (stuck) return stick;
   // Against the slip the step would reach without friction: the current slip where it is large,
   // the slip the normal impulse itself drives where it starts from rest.
-  const Vec3 slip = -(t1_ * b1 + t2_ * b2);
+  const Vec3 slip = -(tangent1 * b1 + tangent2 * b2);
   return slip * (-limit / norm(slip));
 }
 
@@ -196,7 +206,7 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
     const Vec3 Kn = K * n;
     const double coupling = norm(Kn - n * dot(Kn, n)) / dot(Kn, n);
     const double scale = std::max(std::fabs(un), target_separation);
-    if (slip <= kDirectionTolerance * scale || coupling <= kDirectionTolerance) return stick;
+    if (slip <= DIRECTION_TOLERANCE * scale || coupling <= DIRECTION_TOLERANCE) return stick;
     return integrate_impact(K, u, n, material.mu, e_work, target_separation);
   }
 
@@ -211,7 +221,7 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
     if (material.mu == 0.0) return slide;
     const Vec3 u_after = u + K * slide;
     const Vec3 ut_after = u_after - n * dot(u_after, n);
-    if (dot(ut_after, t) >= (1.0 - kDirectionTolerance) * norm(ut_after)) return slide;
+    if (dot(ut_after, t) >= (1.0 - DIRECTION_TOLERANCE) * norm(ut_after)) return slide;
   }
 
   // Slip stops, reverses or turns during the impact.

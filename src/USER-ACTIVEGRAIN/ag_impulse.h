@@ -31,10 +31,10 @@ double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J);
 
 // The contact law on relative velocity u (body 2 minus body 1 at the contact), unit normal n from
 // body 1 to body 2. target_separation (>= 0) is the normal velocity restitution aims for:
-// e * max(0, -u.n), or an overlap's minimum separation velocity if larger. Restitution (Stronge) returns at most the work of
-// compression; if the contact still separates slower than target_separation after it, the
-// normal impulse continues to it, so the law is continuous where the target crosses the
-// approach speed. Returns the impulse on body 2; J.n >= 0.
+// e * max(0, -u.n), or an overlap's minimum separation velocity if larger. Restitution (Stronge)
+// returns at most the work of compression; if the contact still separates slower than
+// target_separation after it, the normal impulse continues to it, so the law is continuous where
+// the target crosses the approach speed. Returns the impulse on body 2; J.n >= 0.
 Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
                          double target_separation);
 
@@ -49,7 +49,7 @@ class TangentialStep {
 
   // Tangential over normal impulse that keeps a stuck contact stuck: it stays stuck while this
   // is within the friction cone.
-  double sticking_ratio() const { return sticking_ratio_; }
+  double sticking_ratio() const { return stick_ratio; }
 
   // Tangential impulse over a step with normal impulse dp that stops the slip of u, if the
   // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
@@ -57,8 +57,10 @@ class TangentialStep {
   Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
 
  private:
-  Vec3 n_, t1_, t2_;
-  double inv11_ = 0, inv12_ = 0, inv22_ = 0, kn1_ = 0, kn2_ = 0, sticking_ratio_ = 0;
+  Vec3 normal, tangent1, tangent2;    // the contact frame
+  // The inverse of K on the tangent plane (symmetric) and the tangential components of K n.
+  double inv11 = 0, inv12 = 0, inv22 = 0, kn1 = 0, kn2 = 0;
+  double stick_ratio = 0;    // sticking_ratio()
 };
 
 // One isolated collision between body 1 and body 2 at contact point c with normal n (1 -> 2).

@@ -7,11 +7,17 @@ namespace ActiveGrain {
 
 constexpr double PI = 3.14159265358979323846;
 
+// Doubles a Vec3 takes in a packed array (Vec3(const double *), store, add_to).
+constexpr int VEC3_SIZE = 3;
+// Components of a symmetric 3x3 tensor (a virial, an inverse inertia) in a packed array, in
+// LAMMPS's order.
+enum SymmetricComponent { XX = 0, YY, ZZ, XY, XZ, YZ, NSYMMETRIC };
+
 struct Vec3 {
   double x = 0.0, y = 0.0, z = 0.0;
 
   constexpr Vec3() = default;
-  constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+  constexpr Vec3(double x_value, double y_value, double z_value) : x(x_value), y(y_value), z(z_value) {}
   explicit Vec3(const double *a) : x(a[0]), y(a[1]), z(a[2]) {}
 
   void store(double *a) const { a[0] = x; a[1] = y; a[2] = z; }
@@ -35,15 +41,15 @@ inline Vec3 cross(const Vec3 &a, const Vec3 &b)
 }
 inline double norm2(const Vec3 &a) { return dot(a, a); }
 inline double norm(const Vec3 &a) { return std::sqrt(dot(a, a)); }
-// Adds scale times the outer product a (x) b to a virial v, in LAMMPS's order xx, yy, zz, xy, xz, yz.
+// Adds scale times the outer product a (x) b to a virial v (SymmetricComponent order).
 inline void add_outer_product(double *v, const Vec3 &a, const Vec3 &b, double scale = 1.0)
 {
-  v[0] += scale * a.x * b.x;
-  v[1] += scale * a.y * b.y;
-  v[2] += scale * a.z * b.z;
-  v[3] += scale * a.x * b.y;
-  v[4] += scale * a.x * b.z;
-  v[5] += scale * a.y * b.z;
+  v[XX] += scale * a.x * b.x;
+  v[YY] += scale * a.y * b.y;
+  v[ZZ] += scale * a.z * b.z;
+  v[XY] += scale * a.x * b.y;
+  v[XZ] += scale * a.x * b.z;
+  v[YZ] += scale * a.y * b.z;
 }
 
 // Row-major 3x3 matrix.
@@ -62,14 +68,14 @@ struct Mat3 {
     r.m[0][0] = d.x; r.m[1][1] = d.y; r.m[2][2] = d.z;
     return r;
   }
-  // Symmetric matrix from LAMMPS's 6-vector order xx, yy, zz, xy, xz, yz.
+  // Symmetric matrix from its packed components (SymmetricComponent order).
   static Mat3 symmetric(const double *s)
   {
     Mat3 r;
-    r.m[0][0] = s[0]; r.m[1][1] = s[1]; r.m[2][2] = s[2];
-    r.m[0][1] = r.m[1][0] = s[3];
-    r.m[0][2] = r.m[2][0] = s[4];
-    r.m[1][2] = r.m[2][1] = s[5];
+    r.m[0][0] = s[XX]; r.m[1][1] = s[YY]; r.m[2][2] = s[ZZ];
+    r.m[0][1] = r.m[1][0] = s[XY];
+    r.m[0][2] = r.m[2][0] = s[XZ];
+    r.m[1][2] = r.m[2][1] = s[YZ];
     return r;
   }
   // Columns are the vectors a, b, c.

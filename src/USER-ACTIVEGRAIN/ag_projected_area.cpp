@@ -11,7 +11,7 @@ namespace {
 double disc_area_left_of(double a, double c, double r)
 {
   const double u = std::clamp((a - c) / r, -1.0, 1.0);
-  return r * r * (M_PI / 2 + std::asin(u) + u * std::sqrt(1.0 - u * u));
+  return r * r * (PI / 2 + std::asin(u) + u * std::sqrt(1.0 - u * u));
 }
 }    // namespace
 

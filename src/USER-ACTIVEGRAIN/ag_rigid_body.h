@@ -5,6 +5,9 @@
 
 namespace ActiveGrain {
 
+// A solid sphere's moment of inertia about a diameter, over m r^2.
+constexpr double SOLID_SPHERE_INERTIA = 0.4;
+
 struct RigidBodyState {
   double inv_mass = 0.0;    // 0: infinite mass (a plate or wall moving as prescribed)
   Mat3 inv_inertia;         // world-frame inverse inertia tensor; 0 for a wall
@@ -23,7 +26,7 @@ struct RigidBodyState {
   {
     RigidBodyState s;
     s.inv_mass = 1.0 / m;
-    s.inv_inertia = Mat3::identity(1.0 / (0.4 * m * r * r));
+    s.inv_inertia = Mat3::identity(1.0 / (SOLID_SPHERE_INERTIA * m * r * r));
     s.com = x;
     s.v = v;
     s.omega = omega;

@@ -1,14 +1,12 @@
 #include "ag_rod_geometry.h"
 
+#include "ag_math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace ActiveGrain {
-
-namespace {
-constexpr double PI = 3.14159265358979323846;
-}
 
 std::string rod_parameter_error(const RodParameters &p)
 {
@@ -16,7 +14,8 @@ std::string rod_parameter_error(const RodParameters &p)
   if (!(p.tail_diameter > 0.0)) return "tail diameter must be > 0";
   if (!(p.nose_diameter > 0.0)) return "nose diameter must be > 0";
   if (!(p.density > 0.0)) return "density must be > 0";
-  if (p.nspheres < 2) return "a rod needs at least 2 spheres";
+  if (p.nspheres < MIN_ROD_SPHERES)
+    return "a rod needs at least " + std::to_string(MIN_ROD_SPHERES) + " spheres";
   if (std::max(p.tail_diameter, p.nose_diameter) >= p.length)
     return "length must exceed both diameters";
   return "";

@@ -12,6 +12,9 @@
 
 namespace ActiveGrain {
 
+// A tail and a nose: the fewest spheres that give a rod its axis and polarity.
+constexpr int MIN_ROD_SPHERES = 2;
+
 struct RodParameters {
   double length = 0.0;          // L, tail face to nose face
   double tail_diameter = 0.0;   // D_tail at x = 0

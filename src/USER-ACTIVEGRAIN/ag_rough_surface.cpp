@@ -18,10 +18,12 @@ double fade_slope(double t) { return 30.0 * t * t * (t - 1.0) * (t - 1.0); }
 // cell: <f^2> = 181/462, <f'^2> = 10/7 (exact integrals), and <(1-f)^2 + f^2> = 2 <f^2>. Hence
 //   <(dN/du)^2> = <f'^2> * 2 var * 2 <f^2>       (per lattice direction u)
 //   <N^2>       = var * (2 <f^2>)^2
-constexpr double kNodeVariance = 1.0 / 3.0;
-constexpr double kBlendSquare = 2.0 * 181.0 / 462.0;
-constexpr double kSlopeVariance = (10.0 / 7.0) * 2.0 * kNodeVariance * kBlendSquare;
-constexpr double kHeightVariance = kNodeVariance * kBlendSquare * kBlendSquare;
+constexpr double NODE_VARIANCE = 1.0 / 3.0;
+constexpr double BLEND_SQUARE = 2.0 * 181.0 / 462.0;
+constexpr double SLOPE_VARIANCE = (10.0 / 7.0) * 2.0 * NODE_VARIANCE * BLEND_SQUARE;
+constexpr double HEIGHT_VARIANCE = NODE_VARIANCE * BLEND_SQUARE * BLEND_SQUARE;
+// Where in a cell the blend is steepest: f' peaks mid-cell.
+constexpr double STEEPEST_FADE = 0.5;
 
 std::int64_t wrap(std::int64_t i, std::int64_t n)
 {
@@ -41,7 +43,7 @@ Vec3 SurfacePoint::normal_up() const
 
 RoughSurface::RoughSurface(double rms_slope, double correlation_length, std::uint64_t seed,
                            double period_x, double period_y) :
-    seed_(seed)
+    hash_seed(seed)
 {
   if (rms_slope <= 0.0) return;
   auto lattice = [&](double period, double &spacing, std::int64_t &cells) {
@@ -50,33 +52,33 @@ RoughSurface::RoughSurface(double rms_slope, double correlation_length, std::uin
     cells = std::max<std::int64_t>(1, std::llround(period / correlation_length));
     spacing = period / static_cast<double>(cells);
   };
-  lattice(period_x, spacing_x_, cells_x_);
-  lattice(period_y, spacing_y_, cells_y_);
+  lattice(period_x, lattice_x, cells_x);
+  lattice(period_y, lattice_y, cells_y);
   // <|grad h|^2> = amplitude^2 <(dN/du)^2> (1/sx^2 + 1/sy^2) = rms_slope^2
-  amplitude_ = rms_slope /
-      std::sqrt(kSlopeVariance * (1.0 / (spacing_x_ * spacing_x_) + 1.0 / (spacing_y_ * spacing_y_)));
+  amplitude = rms_slope /
+      std::sqrt(SLOPE_VARIANCE * (1.0 / (lattice_x * lattice_x) + 1.0 / (lattice_y * lattice_y)));
   // h blends node heights in [-amplitude, amplitude) with weights in [0, 1], so |h| <= amplitude;
   // along each lattice direction the slope is at most max f' = 15/8 times a node difference (at
   // most 2 amplitude) over the spacing.
-  const double steepest = fade_slope(0.5) * 2.0 * amplitude_;
-  const double slope_x = steepest / spacing_x_, slope_y = steepest / spacing_y_;
-  min_normal_z_ = 1.0 / std::sqrt(1.0 + slope_x * slope_x + slope_y * slope_y);
+  const double steepest = fade_slope(STEEPEST_FADE) * 2.0 * amplitude;
+  const double slope_x = steepest / lattice_x, slope_y = steepest / lattice_y;
+  normal_z_bound = 1.0 / std::sqrt(1.0 + slope_x * slope_x + slope_y * slope_y);
 }
 
-double RoughSurface::rms_height() const { return amplitude_ * std::sqrt(kHeightVariance); }
+double RoughSurface::rms_height() const { return amplitude * std::sqrt(HEIGHT_VARIANCE); }
 
 double RoughSurface::node_height(std::int64_t i, std::int64_t j) const
 {
-  return amplitude_ *
-      uniform_symmetric(hash_words({seed_, static_cast<std::uint64_t>(wrap(i, cells_x_)),
-                                    static_cast<std::uint64_t>(wrap(j, cells_y_))}));
+  return amplitude *
+      uniform_symmetric(hash_words({hash_seed, static_cast<std::uint64_t>(wrap(i, cells_x)),
+                                    static_cast<std::uint64_t>(wrap(j, cells_y))}));
 }
 
 SurfacePoint RoughSurface::at(double x, double y) const
 {
   SurfacePoint p;
   if (flat()) return p;
-  const double u = x / spacing_x_, v = y / spacing_y_;
+  const double u = x / lattice_x, v = y / lattice_y;
   const double iu = std::floor(u), iv = std::floor(v);
   const double tu = u - iu, tv = v - iv;
   const auto i = static_cast<std::int64_t>(iu), j = static_cast<std::int64_t>(iv);
@@ -85,8 +87,8 @@ SurfacePoint RoughSurface::at(double x, double y) const
   const double fu = fade(tu), fv = fade(tv);
   const double lower = h00 + fu * (h10 - h00), upper = h01 + fu * (h11 - h01);
   p.height = lower + fv * (upper - lower);
-  p.slope_x = fade_slope(tu) * ((1.0 - fv) * (h10 - h00) + fv * (h11 - h01)) / spacing_x_;
-  p.slope_y = fade_slope(tv) * (upper - lower) / spacing_y_;
+  p.slope_x = fade_slope(tu) * ((1.0 - fv) * (h10 - h00) + fv * (h11 - h01)) / lattice_x;
+  p.slope_y = fade_slope(tv) * (upper - lower) / lattice_y;
   return p;
 }
 

@@ -29,24 +29,24 @@ class RoughSurface {
   RoughSurface(double rms_slope, double correlation_length, std::uint64_t seed, double period_x = 0.0,
                double period_y = 0.0);
 
-  bool flat() const { return amplitude_ == 0.0; }
+  bool flat() const { return amplitude == 0.0; }
   SurfacePoint at(double x, double y) const;
   double rms_height() const;    // of h over the plane
   // Bounds over the whole plane: |h| <= max_height(), and the normal's z component is at least
   // min_normal_z() (its tilt at the steepest slope the lattice allows).
-  double max_height() const { return amplitude_; }
-  double min_normal_z() const { return min_normal_z_; }
-  double spacing_x() const { return spacing_x_; }
-  double spacing_y() const { return spacing_y_; }
+  double max_height() const { return amplitude; }
+  double min_normal_z() const { return normal_z_bound; }
+  double spacing_x() const { return lattice_x; }
+  double spacing_y() const { return lattice_y; }
 
  private:
   double node_height(std::int64_t i, std::int64_t j) const;
 
-  double amplitude_ = 0.0;    // heights at lattice nodes are uniform in [-amplitude, amplitude)
-  double min_normal_z_ = 1.0;
-  double spacing_x_ = 1.0, spacing_y_ = 1.0;
-  std::int64_t cells_x_ = 0, cells_y_ = 0;    // > 0: periodic with this many cells
-  std::uint64_t seed_ = 0;
+  double amplitude = 0.0;    // heights at lattice nodes are uniform in [-amplitude, amplitude)
+  double normal_z_bound = 1.0;
+  double lattice_x = 1.0, lattice_y = 1.0;    // lattice spacings
+  std::int64_t cells_x = 0, cells_y = 0;      // > 0: periodic with this many cells
+  std::uint64_t hash_seed = 0;
 };
 
 }    // namespace ActiveGrain

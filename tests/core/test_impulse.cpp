@@ -187,7 +187,7 @@ TEST(Impulse, LawIsContinuousWhereTheTargetCrossesTheApproachSpeed)
   // leave faster than it approaches. Restitution returns at most the compression work; the
   // excess target is added after it. No jump where the target crosses the approach speed,
   // nor where the approach speed crosses zero, in any branch (stick, slide, integrated), beyond
-  // the integrated branch's discretisation (kSubsteps per phase; about 1% at worst).
+  // the integrated branch's discretisation (SUBSTEPS per phase; about 1% at worst).
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   int integrated = 0, jumps = 0;

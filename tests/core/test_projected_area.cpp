@@ -1,4 +1,5 @@
 // The shares of a disc chain's union area: exact for known shapes, and they add up to the union.
+#include "ag_math.h"
 #include "ag_projected_area.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <random>
 
 using ActiveGrain::disc_chain_area_shares;
+using ActiveGrain::PI;
 
 namespace {
 double total(const std::vector<double> &v) { return std::accumulate(v.begin(), v.end(), 0.0); }
@@ -41,14 +43,14 @@ TEST(ProjectedArea, SingleDiscIsPiRSquared)
 {
   auto s = disc_chain_area_shares({0.3}, {0.55});
   ASSERT_EQ(s.size(), 1u);
-  EXPECT_NEAR(s[0], M_PI * 0.55 * 0.55, 1e-14);
+  EXPECT_NEAR(s[0], PI * 0.55 * 0.55, 1e-14);
 }
 
 TEST(ProjectedArea, SeparateDiscsKeepTheirArea)
 {
   auto s = disc_chain_area_shares({0.0, 3.0}, {1.0, 0.5});
-  EXPECT_NEAR(s[0], M_PI, 1e-14);
-  EXPECT_NEAR(s[1], M_PI * 0.25, 1e-14);
+  EXPECT_NEAR(s[0], PI, 1e-14);
+  EXPECT_NEAR(s[1], PI * 0.25, 1e-14);
 }
 
 TEST(ProjectedArea, TwoEqualDiscsSplitTheLensEvenly)
@@ -58,16 +60,16 @@ TEST(ProjectedArea, TwoEqualDiscsSplitTheLensEvenly)
   const double lens = 2 * r * r * std::acos(d / (2 * r)) - 0.5 * d * std::sqrt(4 * r * r - d * d);
   auto s = disc_chain_area_shares({0.0, d}, {r, r});
   EXPECT_NEAR(s[0], s[1], 1e-14);
-  EXPECT_NEAR(total(s), 2 * M_PI * r * r - lens, 1e-12);
+  EXPECT_NEAR(total(s), 2 * PI * r * r - lens, 1e-12);
 }
 
 TEST(ProjectedArea, DiscInsideAnotherAddsNothing)
 {
   auto s = disc_chain_area_shares({0.0, 0.2}, {1.0, 0.3});
   EXPECT_NEAR(s[1], 0.0, 1e-14);
-  EXPECT_NEAR(total(s), M_PI, 1e-14);
+  EXPECT_NEAR(total(s), PI, 1e-14);
   auto same = disc_chain_area_shares({0.5, 0.5}, {0.4, 0.4});
-  EXPECT_NEAR(total(same), M_PI * 0.16, 1e-14);
+  EXPECT_NEAR(total(same), PI * 0.16, 1e-14);
 }
 
 TEST(ProjectedArea, TaperedRodChainMatchesTheUnion)
@@ -83,7 +85,7 @@ TEST(ProjectedArea, TaperedRodChainMatchesTheUnion)
   auto s = disc_chain_area_shares(c, r);
   EXPECT_NEAR(total(s), union_area_numeric(c, r), 1e-6);
   for (double share : s) EXPECT_GT(share, 0.0);
-  EXPECT_LT(total(s), std::accumulate(r.begin(), r.end(), 0.0, [](double a, double x) { return a + M_PI * x * x; }));
+  EXPECT_LT(total(s), std::accumulate(r.begin(), r.end(), 0.0, [](double a, double x) { return a + PI * x * x; }));
 }
 
 TEST(ProjectedArea, RandomChainsAddUpToTheUnion)
@@ -147,7 +149,7 @@ TEST(RodChain, UntaperedChainHasNoPolarAxis)
   auto rod = ActiveGrain::project_rod_chain({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.5});
   EXPECT_EQ(norm2(rod.axis), 0.0);
   EXPECT_EQ(norm2(rod.polar), 0.0);
-  EXPECT_GT(total(rod.shares), M_PI * 0.25);
+  EXPECT_GT(total(rod.shares), PI * 0.25);
 }
 
 // The polarization seen from above: a tilted rod's polar axis is its in-plane direction, of

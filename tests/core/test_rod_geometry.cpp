@@ -1,5 +1,6 @@
 // Rod mass properties against independent references: the cylinder and cone textbook formulas
 // and a numerical integration of the frustum (slices of thin discs).
+#include "ag_math.h"
 #include "ag_rod_geometry.h"
 
 #include <gtest/gtest.h>
@@ -9,8 +10,6 @@
 using namespace ActiveGrain;
 
 namespace {
-constexpr double PI = 3.14159265358979323846;
-
 RodParameters paper_rod(int n = 9)
 {
   // SI units: 4.5 mm brass rod tapered from 1.1 mm to 0.7 mm.

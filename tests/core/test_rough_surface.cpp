@@ -13,13 +13,13 @@ using ActiveGrain::RoughSurface;
 using ActiveGrain::SurfacePoint;
 
 namespace {
-constexpr double kSlope = 0.02, kLength = 1.0e-3;
+constexpr double SLOPE = 0.02, LENGTH = 1.0e-3;
 
 // Mean of |grad h|^2 and of h^2 over n random points of a large patch.
 void sample_moments(const RoughSurface &s, int n, double &slope_sq, double &height_sq)
 {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> U(-500.0 * kLength, 500.0 * kLength);
+  std::uniform_real_distribution<double> U(-500.0 * LENGTH, 500.0 * LENGTH);
   slope_sq = height_sq = 0.0;
   for (int k = 0; k < n; ++k) {
     const SurfacePoint p = s.at(U(rng), U(rng));
@@ -33,7 +33,7 @@ void sample_moments(const RoughSurface &s, int n, double &slope_sq, double &heig
 
 TEST(RoughSurface, FlatByDefaultAndAtZeroSlope)
 {
-  for (const RoughSurface &s : {RoughSurface(), RoughSurface(0.0, kLength, 1)}) {
+  for (const RoughSurface &s : {RoughSurface(), RoughSurface(0.0, LENGTH, 1)}) {
     EXPECT_TRUE(s.flat());
     const SurfacePoint p = s.at(0.3e-3, -2.1e-3);
     EXPECT_EQ(p.height, 0.0);
@@ -45,10 +45,10 @@ TEST(RoughSurface, FlatByDefaultAndAtZeroSlope)
 
 TEST(RoughSurface, RmsSlopeAndHeightAreTheAskedAndPredictedOnes)
 {
-  const RoughSurface s(kSlope, kLength, 42);
+  const RoughSurface s(SLOPE, LENGTH, 42);
   double slope_sq, height_sq;
   sample_moments(s, 400000, slope_sq, height_sq);
-  EXPECT_NEAR(std::sqrt(slope_sq), kSlope, 0.02 * kSlope);
+  EXPECT_NEAR(std::sqrt(slope_sq), SLOPE, 0.02 * SLOPE);
   EXPECT_NEAR(std::sqrt(height_sq), s.rms_height(), 0.02 * s.rms_height());
   // Small tilts: the rms angle of the normal is the rms slope.
   EXPECT_NEAR(std::acos(s.at(0.1e-3, 0.2e-3).normal_up().z),
@@ -81,37 +81,37 @@ TEST(RoughSurface, HeightAndTiltStayWithinTheirBounds)
 
 TEST(RoughSurface, SlopesAreTheDerivativesOfTheHeight)
 {
-  const RoughSurface s(kSlope, kLength, 3);
+  const RoughSurface s(SLOPE, LENGTH, 3);
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> U(-20.0 * kLength, 20.0 * kLength);
-  const double h = 1e-4 * kLength;
+  std::uniform_real_distribution<double> U(-20.0 * LENGTH, 20.0 * LENGTH);
+  const double h = 1e-4 * LENGTH;
   for (int k = 0; k < 1000; ++k) {
     const double x = U(rng), y = U(rng);
     const SurfacePoint p = s.at(x, y);
     const double dx = (s.at(x + h, y).height - s.at(x - h, y).height) / (2 * h);
     const double dy = (s.at(x, y + h).height - s.at(x, y - h).height) / (2 * h);
-    EXPECT_NEAR(p.slope_x, dx, 5e-4 * kSlope);
-    EXPECT_NEAR(p.slope_y, dy, 5e-4 * kSlope);
+    EXPECT_NEAR(p.slope_x, dx, 5e-4 * SLOPE);
+    EXPECT_NEAR(p.slope_y, dy, 5e-4 * SLOPE);
   }
 }
 
 TEST(RoughSurface, ContinuousAcrossCellEdges)
 {
-  const RoughSurface s(kSlope, kLength, 5);
+  const RoughSurface s(SLOPE, LENGTH, 5);
   for (int i = -5; i <= 5; ++i) {
-    const double edge = i * s.spacing_x(), eps = 1e-9 * kLength;
+    const double edge = i * s.spacing_x(), eps = 1e-9 * LENGTH;
     const SurfacePoint a = s.at(edge - eps, 0.37e-3), b = s.at(edge + eps, 0.37e-3);
     EXPECT_NEAR(a.height, b.height, 1e-6 * s.rms_height());
-    EXPECT_NEAR(a.slope_x, b.slope_x, 1e-6 * kSlope);
-    EXPECT_NEAR(a.slope_y, b.slope_y, 1e-6 * kSlope);
+    EXPECT_NEAR(a.slope_x, b.slope_x, 1e-6 * SLOPE);
+    EXPECT_NEAR(a.slope_y, b.slope_y, 1e-6 * SLOPE);
   }
 }
 
 TEST(RoughSurface, SlopesDecorrelateBeyondTheCorrelationLength)
 {
-  const RoughSurface s(kSlope, kLength, 9);
+  const RoughSurface s(SLOPE, LENGTH, 9);
   std::mt19937 rng(13);
-  std::uniform_real_distribution<double> U(-300.0 * kLength, 300.0 * kLength);
+  std::uniform_real_distribution<double> U(-300.0 * LENGTH, 300.0 * LENGTH);
   auto correlation = [&](double shift) {
     double ab = 0, aa = 0, bb = 0;
     for (int k = 0; k < 100000; ++k) {
@@ -123,13 +123,13 @@ TEST(RoughSurface, SlopesDecorrelateBeyondTheCorrelationLength)
     }
     return ab / std::sqrt(aa * bb);
   };
-  EXPECT_GT(correlation(0.05 * kLength), 0.9);
-  EXPECT_LT(std::fabs(correlation(3.0 * kLength)), 0.02);
+  EXPECT_GT(correlation(0.05 * LENGTH), 0.9);
+  EXPECT_LT(std::fabs(correlation(3.0 * LENGTH)), 0.02);
 }
 
 TEST(RoughSurface, SameSeedSameSurfaceOtherSeedAnother)
 {
-  const RoughSurface a(kSlope, kLength, 1), b(kSlope, kLength, 1), c(kSlope, kLength, 2);
+  const RoughSurface a(SLOPE, LENGTH, 1), b(SLOPE, LENGTH, 1), c(SLOPE, LENGTH, 2);
   int differ = 0;
   for (int k = 0; k < 100; ++k) {
     const double x = 0.37e-3 * k, y = -0.23e-3 * k;
@@ -142,13 +142,13 @@ TEST(RoughSurface, SameSeedSameSurfaceOtherSeedAnother)
 TEST(RoughSurface, PeriodicDirectionsRepeatWithTheBox)
 {
   const double Lx = 80.3e-3, Ly = 12.1e-3;
-  const RoughSurface s(kSlope, kLength, 17, Lx, Ly);
-  EXPECT_NEAR(Lx / s.spacing_x(), std::round(Lx / kLength), 1e-9);
+  const RoughSurface s(SLOPE, LENGTH, 17, Lx, Ly);
+  EXPECT_NEAR(Lx / s.spacing_x(), std::round(Lx / LENGTH), 1e-9);
   for (int k = 0; k < 50; ++k) {
     const double x = 0.77e-3 * k, y = 0.31e-3 * k;
     const SurfacePoint p = s.at(x, y), q = s.at(x + Lx, y - 2 * Ly);
     EXPECT_NEAR(p.height, q.height, 1e-12 * s.rms_height());
-    EXPECT_NEAR(p.slope_x, q.slope_x, 1e-9 * kSlope);
-    EXPECT_NEAR(p.slope_y, q.slope_y, 1e-9 * kSlope);
+    EXPECT_NEAR(p.slope_x, q.slope_x, 1e-9 * SLOPE);
+    EXPECT_NEAR(p.slope_y, q.slope_y, 1e-9 * SLOPE);
   }
 }
