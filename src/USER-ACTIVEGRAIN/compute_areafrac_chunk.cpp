@@ -1,5 +1,7 @@
 #include "compute_areafrac_chunk.h"
 
+#include "ag_math.h"
+
 #include "atom.h"
 #include "compute_chunk_atom.h"
 #include "domain.h"
@@ -10,15 +12,17 @@
 
 using namespace LAMMPS_NS;
 
+static const char *const STYLE = "Compute areafrac/chunk";
+
 // Output columns, and the per-chunk sums they come from.
 enum { PHI_BEADS, PHI_RODS, NRODS, POLAR_X, POLAR_Y, POLAR, NCOLS };
 enum { BEAD_AREA, ROD_AREA, ROD_COUNT, ROD_PX, ROD_PY, NSUMS };
 
 ComputeAreafracChunk::ComputeAreafracChunk(LAMMPS *lmp, int narg, char **arg) :
-    ComputeChunk(lmp, narg, arg), rods(lmp, "areafrac/chunk", false)
+    ComputeChunk(lmp, narg, arg), rods(lmp, STYLE, false)
 {
-  if (narg != 4) error->all(FLERR, "Compute areafrac/chunk: expected one argument, a compute chunk/atom ID");
-  if (!atom->radius_flag) error->all(FLERR, "Compute areafrac/chunk: atom style must define radius (atom_style sphere)");
+  if (narg != 4) error->all(FLERR, "{}: expected one argument, a compute chunk/atom ID", STYLE);
+  if (!atom->radius_flag) error->all(FLERR, "{}: atom style must define radius (atom_style sphere)", STYLE);
   array_flag = 1;
   size_array_cols = NCOLS;
   size_array_rows = 0;
@@ -39,7 +43,7 @@ void ComputeAreafracChunk::init()
 {
   ComputeChunk::init();
   if (domain->dimension == 3 && domain->zperiodic == 0 && domain->zprd <= 0)
-    error->all(FLERR, "Compute areafrac/chunk: the box has no extent in z");
+    error->all(FLERR, "{}: the box has no extent in z", STYLE);
 }
 
 void ComputeAreafracChunk::allocate()
@@ -74,7 +78,7 @@ void ComputeAreafracChunk::compute_array()
     if (c < 0) continue;
     const int r = rods.rod_of_atom(i);
     if (r < 0) {
-      sums[c][BEAD_AREA] += M_PI * radius[i] * radius[i];
+      sums[c][BEAD_AREA] += ActiveGrain::PI * radius[i] * radius[i];
       continue;
     }
     const auto &rod = rods.rods()[r];

@@ -9,13 +9,15 @@
 
 using namespace LAMMPS_NS;
 
+static const char *const STYLE = "Compute polar/rod";
+
 enum { POLAR, PX, PY, AXIS_Z_MEAN, NEMATIC, NRODS, NVECTOR };
 enum { ID, X, Y, Z, POLAR_X, POLAR_Y, AXIS_Z, VX, VY, VZ, NCOLS };
 
 ComputePolarRod::ComputePolarRod(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), rods(lmp, "polar/rod", true)
+    Compute(lmp, narg, arg), rods(lmp, STYLE, true)
 {
-  if (narg != 3) error->all(FLERR, "Compute polar/rod: expected no arguments after the group, got {}", narg - 3);
+  if (narg != 3) error->all(FLERR, "{}: expected no arguments after the group, got {}", STYLE, narg - 3);
   scalar_flag = vector_flag = local_flag = 1;
   size_vector = NVECTOR;
   size_local_cols = NCOLS;
@@ -52,7 +54,7 @@ void ComputePolarRod::compute_vector()
   invoked_vector = update->ntimestep;
   rods.update(groupbit);
   enum { SUM_PX, SUM_PY, SUM_AXIS_Z, SUM_COS2, SUM_SIN2, SUM_COUNT, NSUM };
-  double sum[NSUM] = {0, 0, 0, 0, 0, 0};
+  double sum[NSUM] = {};
   for (const auto &rod : rods.rods()) {
     if (!rod.counted_here) continue;
     const double theta = std::atan2(rod.polar.y, rod.polar.x);

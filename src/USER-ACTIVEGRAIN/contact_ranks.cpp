@@ -5,7 +5,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "local_rods.h"
+#include "lowest_tag_rule.h"
 #include "neighbor.h"
 #include "rigid_body_provider.h"
 
@@ -20,32 +20,32 @@ using namespace LAMMPS_NS;
 // ghost image nearest the body's lowest-tag atom.
 void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
 {
-  rigid_bodies_ = !providers.empty();
+  rigid_bodies = !providers.empty();
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   tagint *tag = atom->tag;
-  nlocal_ = nlocal;
-  tag_ = tag;
-  newton_pair_ = force->newton_pair != 0;
-  body_id_.assign(nall, 0);
-  solved_here_.assign(nall, 0);
-  std::fill(solved_here_.begin(), solved_here_.begin() + nlocal, 1);
-  if (!rigid_bodies_) return;
+  assigned_nlocal = nlocal;
+  assigned_tag = tag;
+  newton_pair = force->newton_pair != 0;
+  body_ids.assign(nall, 0);
+  solved_here.assign(nall, 0);
+  std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
+  if (!rigid_bodies) return;
 
   LowestTagRule solving;
   ActiveGrain::RigidBodyState state;
   for (int i = 0; i < nall; i++)
     for (RigidBodyProvider *provider : providers)
-      if (provider->body_of_atom(i, state, body_id_[i])) {
-        solving.add(body_id_[i], tag[i]);
+      if (provider->body_of_atom(i, state, body_ids[i])) {
+        solving.add(body_ids[i], tag[i]);
         break;
       }
   for (int i = 0; i < nall; i++) {
-    if (!body_id_[i]) continue;
-    const int solver_atom = solving.deciding_atom(atom, body_id_[i]);
-    solved_here_[i] = 0;
+    if (!body_ids[i]) continue;
+    const int solver_atom = solving.deciding_atom(atom, body_ids[i]);
+    solved_here[i] = 0;
     if (solver_atom < 0) continue;
     const int owned = atom->map(tag[i]);    // map() prefers the owned copy
-    solved_here_[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
+    solved_here[i] = (owned < nlocal ? owned : nearest_copy(atom, domain, solver_atom, i)) == i;
   }
 }
 
@@ -58,9 +58,9 @@ void ContactRanks::check_ghost_cutoff(const char *style)
   double **x = atom->x;
   std::unordered_map<tagint, std::vector<int>> visible;    // bodies with an owned atom
   for (int i = 0; i < nlocal; i++)
-    if (body_id_[i]) visible[body_id_[i]];
-  for (int j = 0; j < (int) body_id_.size(); j++) {
-    auto found = visible.find(body_id_[j]);
+    if (body_ids[i]) visible[body_ids[i]];
+  for (int j = 0; j < (int) body_ids.size(); j++) {
+    auto found = visible.find(body_ids[j]);
     if (found != visible.end()) found->second.push_back(j);
   }
   double span = 0.0;
@@ -85,5 +85,5 @@ void ContactRanks::check_ghost_cutoff(const char *style)
 
 double ContactRanks::memory_usage() const
 {
-  return (double) body_id_.capacity() * sizeof(tagint) + (double) solved_here_.capacity();
+  return (double) body_ids.capacity() * sizeof(tagint) + (double) solved_here.capacity();
 }

@@ -22,24 +22,24 @@ class ContactRanks : protected Pointers {
   void assign(const std::vector<RigidBodyProvider *> &providers);
 
   // The ID of atom i's rigid body (the same on every rank), 0 for an atom in none.
-  tagint body_id(int i) const { return body_id_[i]; }
+  tagint body_id(int i) const { return body_ids[i]; }
   // This rank solves atom i's wall contacts (and, for a body's atom, the contacts its body decides).
-  bool solves_atom(int i) const { return solved_here_[i]; }
-  const std::vector<char> &solved_atoms() const { return solved_here_; }
+  bool solves_atom(int i) const { return solved_here[i]; }
+  const std::vector<char> &solved_atoms() const { return solved_here; }
   // This rank solves the contact of i with neighbor j (from i's side of the neighbor list), so
   // that each physical contact is solved on one rank, once: a contact with a rigid body's atom
   // from that atom if its body has the lower ID of the two and i is the copy solved here; a pair
   // of beads from the owned bead i (with a full list or a ghost j listed on both ranks, only from
   // the lower tag).
-  bool solves_pair(int i, int j) const { return may_solve_pair(i, j) && solved_here_[i]; }
+  bool solves_pair(int i, int j) const { return may_solve_pair(i, j) && solved_here[i]; }
   // ... all of it but whether i is the copy solved here, which can change from step to step:
   // fixed between neighbor list builds (NearPairs).
   bool may_solve_pair(int i, int j) const
   {
-    const tagint body_i = body_id_[i], body_j = body_id_[j];
+    const tagint body_i = body_ids[i], body_j = body_ids[j];
     if (body_i || body_j) return body_i && (!body_j || body_i < body_j);
-    if (i >= nlocal_) return false;
-    if (rigid_bodies_ || (!newton_pair_ && j >= nlocal_)) return tag_[i] < tag_[j];
+    if (i >= assigned_nlocal) return false;
+    if (rigid_bodies || (!newton_pair && j >= assigned_nlocal)) return assigned_tag[i] < assigned_tag[j];
     return true;
   }
 
@@ -51,13 +51,13 @@ class ContactRanks : protected Pointers {
   double memory_usage() const;
 
  private:
-  bool rigid_bodies_ = false;          // a full neighbor list with ghosts
+  bool rigid_bodies = false;    // a full neighbor list with ghosts
   // Of the atoms as assign() saw them (this force computation's).
-  int nlocal_ = 0;
-  const tagint *tag_ = nullptr;
-  bool newton_pair_ = false;
-  std::vector<tagint> body_id_;        // per owned or ghost atom: its body's ID, 0 for a bead
-  std::vector<char> solved_here_;
+  int assigned_nlocal = 0;
+  const tagint *assigned_tag = nullptr;
+  bool newton_pair = false;
+  std::vector<tagint> body_ids;     // per owned or ghost atom: its body's ID, 0 for a bead
+  std::vector<char> solved_here;    // per owned or ghost atom: solves_atom()
 };
 
 }    // namespace LAMMPS_NS

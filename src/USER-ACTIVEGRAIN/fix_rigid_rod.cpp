@@ -1,5 +1,7 @@
 #include "fix_rigid_rod.h"
 
+#include "ag_rod_geometry.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -17,21 +19,42 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using ActiveGrain::Mat3;
+using ActiveGrain::NSYMMETRIC;
+using ActiveGrain::VEC3_SIZE;
 using ActiveGrain::Vec3;
+
+static const char *const STYLE = "Fix rigid/rod";
 
 namespace {
 // Layout of one atom's row of `state`: what a contact style needs of its body. The offset is
 // the atom's world-frame displacement from the COM, so that the COM of any periodic image of
 // the atom is its own position minus the offset.
-enum { STATE_ID, STATE_INVMASS, STATE_OFFSET, STATE_INVI = STATE_OFFSET + 3, STATE_V = STATE_INVI + 6,
-       STATE_OMEGA = STATE_V + 3, NSTATE = STATE_OMEGA + 3 };
-enum { SUM_VEC, SUM_NTAIL = 3, SUM_NNOSE, NSUM };
+enum {
+  STATE_ID,
+  STATE_INVMASS,
+  STATE_OFFSET,
+  STATE_INVI = STATE_OFFSET + VEC3_SIZE,
+  STATE_V = STATE_INVI + NSYMMETRIC,
+  STATE_OMEGA = STATE_V + VEC3_SIZE,
+  NSTATE = STATE_OMEGA + VEC3_SIZE
+};
+// Columns of `polar_sum` (per body): the sum of nose - tail offsets, and the counts of each.
+enum { SUM_VEC, SUM_NTAIL = SUM_VEC + VEC3_SIZE, SUM_NNOSE, NSUM };
 // Columns of `late` (per atom) and `late_move` (per body): a late impulse and its moment; for a
 // body, once summed on its owner, its displacement and rotation vector.
-enum { LATE_LINEAR, LATE_ANGULAR = 3, NLATE = 6 };
+enum { LATE_LINEAR, LATE_ANGULAR = LATE_LINEAR + VEC3_SIZE, NLATE = LATE_ANGULAR + VEC3_SIZE };
 // Columns of the per-atom output (f_ID[1] .. f_ID[4]): the rod's 3-D axis (body x, tail to
 // nose), then its body ID, which tells rods apart in dumps whatever the molecule IDs say.
-enum { OUT_AXIS, OUT_BODY = OUT_AXIS + 3, NOUT };
+enum { OUT_AXIS, OUT_BODY = OUT_AXIS + VEC3_SIZE, NOUT };
+
+// A direction across the template's axis is built from the x axis, or from the y axis where the
+// rod lies within about 26 degrees of x (|axis.x| >= 0.9).
+constexpr double TRIAL_AXIS_COSINE = 0.9;
+// The template's inertia tensor must have the axis and a transverse direction as eigenvectors,
+// to this tolerance relative to I_axial + I_transverse (room for the template's round-off).
+constexpr double AXISYMMETRY_TOLERANCE = 1e-8;
+// extract()'s dim for a per-atom array.
+constexpr int EXTRACT_ARRAY = 2;
 
 Vec3 v3(const double *a) { return Vec3(a); }
 }    // namespace
@@ -39,37 +62,39 @@ Vec3 v3(const double *a) { return Vec3(a); }
 FixRigidRod::FixRigidRod(LAMMPS *lmp, int narg, char **arg) : FixRigidSmall(lmp, narg, arg)
 {
   if (!onemols)
-    error->all(FLERR, "Fix rigid/rod: requires the mol keyword naming a rod template (rod_template)");
-  if (nmol != 1) error->all(FLERR, "Fix rigid/rod: the mol template must hold exactly one rod");
+    error->all(FLERR, "{}: requires the mol keyword naming a rod template (rod_template)", STYLE);
+  if (nmol != 1) error->all(FLERR, "{}: the mol template must hold exactly one rod", STYLE);
   if (!atom->radius_flag || !atom->rmass_flag)
-    error->all(FLERR, "Fix rigid/rod: needs an atom style with per-atom diameter and mass (sphere)");
+    error->all(FLERR, "{}: needs an atom style with per-atom diameter and mass (sphere)", STYLE);
 
   // The template: an axisymmetric rod along its first (tail) to last (nose) atom.
   Molecule *rod = onemols[0];
   const int n = rod->natoms;
-  if (n < 2) error->all(FLERR, "Fix rigid/rod: template {} has fewer than 2 atoms", rod->id);
+  if (n < ActiveGrain::MIN_ROD_SPHERES)
+    error->all(FLERR, "{}: template {} has fewer than {} atoms", STYLE, rod->id,
+               ActiveGrain::MIN_ROD_SPHERES);
   tail_type = rod->type[0];
   nose_type = rod->type[n - 1];
   for (int i = 1; i < n - 1; ++i)
     if (rod->type[i] == tail_type || rod->type[i] == nose_type)
-      error->all(FLERR, "Fix rigid/rod: template {}: only the first (tail) and last (nose) atoms may "
-                 "have the tail and nose types", rod->id);
+      error->all(FLERR, "{}: template {}: only the first (tail) and last (nose) atoms may "
+                 "have the tail and nose types", STYLE, rod->id);
   if (tail_type == nose_type)
-    error->all(FLERR, "Fix rigid/rod: template {}: tail and nose atoms have the same type", rod->id);
+    error->all(FLERR, "{}: template {}: tail and nose atoms have the same type", STYLE, rod->id);
 
   Vec3 axis = v3(rod->x[n - 1]) - v3(rod->x[0]);
   axis = axis / ActiveGrain::norm(axis);
-  const Vec3 trial = std::fabs(axis.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  const Vec3 trial = std::fabs(axis.x) < TRIAL_AXIS_COSINE ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
   Vec3 across = ActiveGrain::cross(axis, trial);
   across = across / ActiveGrain::norm(across);
   const Mat3 itensor = Mat3::symmetric(rod->itensor);
   inertia_axial = ActiveGrain::dot(axis, itensor * axis);
   inertia_transverse = ActiveGrain::dot(across, itensor * across);
   const double scale = inertia_axial + inertia_transverse;
-  if (ActiveGrain::norm(itensor * axis - axis * inertia_axial) > 1e-8 * scale ||
-      ActiveGrain::norm(itensor * across - across * inertia_transverse) > 1e-8 * scale ||
+  if (ActiveGrain::norm(itensor * axis - axis * inertia_axial) > AXISYMMETRY_TOLERANCE * scale ||
+      ActiveGrain::norm(itensor * across - across * inertia_transverse) > AXISYMMETRY_TOLERANCE * scale ||
       !(inertia_axial > 0.0) || !(inertia_transverse > 0.0))
-    error->all(FLERR, "Fix rigid/rod: template {} is not an axisymmetric rod along its tail-to-nose axis",
+    error->all(FLERR, "{}: template {} is not an axisymmetric rod along its tail-to-nose axis", STYLE,
                rod->id);
 
   peratom_flag = 1;
@@ -104,7 +129,7 @@ void FixRigidRod::init()
   // Any other pair style would treat rod spheres as independent grains or as bodies without
   // rotational inertia; without one, rods would pass through everything.
   if (!force->pair || !force->pair_match("gran/impulse", 0))
-    error->all(FLERR, "Fix rigid/rod: rods need pair_style gran/impulse (found pair_style {})",
+    error->all(FLERR, "{}: rods need pair_style gran/impulse (found pair_style {})", STYLE,
                force->pair ? force->pair_style : "none");
 }
 
@@ -113,7 +138,7 @@ void FixRigidRod::setup_pre_neighbor()
   // The whole rod must be visible as ghosts where any of its atoms is.
   const double cutghost = std::max(neighbor->cutneighmax, comm->cutghostuser);
   if (maxextent > cutghost)
-    error->all(FLERR, "Fix rigid/rod: rod extent {} exceeds the ghost cutoff {}: use comm_modify cutoff {}",
+    error->all(FLERR, "{}: rod extent {} exceeds the ghost cutoff {}: use comm_modify cutoff {}", STYLE,
                maxextent, cutghost, maxextent);
   const bool reinit = reinitflag || !setupflag;
   FixRigidSmall::setup_pre_neighbor();
@@ -199,8 +224,8 @@ void FixRigidRod::impose_rod_bodies()
   int anybad = 0;
   MPI_Allreduce(&bad, &anybad, 1, MPI_INT, MPI_MAX, world);
   if (anybad)
-    error->all(FLERR, "Fix rigid/rod: every rod needs exactly one tail atom (type {}) and one nose atom (type {})",
-               tail_type, nose_type);
+    error->all(FLERR, "{}: every rod needs exactly one tail atom (type {}) and one nose atom (type {})",
+               STYLE, tail_type, nose_type);
 
   // Ghost copies of the bodies, then every atom's body-frame displacement in the new frame.
   pre_neighbor();
@@ -252,9 +277,13 @@ void FixRigidRod::fill_body_state()
     s[STATE_ID] = static_cast<double>(bodytag[i]);
     s[STATE_INVMASS] = 1.0 / b.mass;
     offset.store(s + STATE_OFFSET);
-    const double sym[6] = {inv_inertia.m[0][0], inv_inertia.m[1][1], inv_inertia.m[2][2],
-                           inv_inertia.m[0][1], inv_inertia.m[0][2], inv_inertia.m[1][2]};
-    for (int k = 0; k < 6; ++k) s[STATE_INVI + k] = sym[k];
+    double *inv_i = s + STATE_INVI;
+    inv_i[ActiveGrain::XX] = inv_inertia.m[0][0];
+    inv_i[ActiveGrain::YY] = inv_inertia.m[1][1];
+    inv_i[ActiveGrain::ZZ] = inv_inertia.m[2][2];
+    inv_i[ActiveGrain::XY] = inv_inertia.m[0][1];
+    inv_i[ActiveGrain::XZ] = inv_inertia.m[0][2];
+    inv_i[ActiveGrain::YZ] = inv_inertia.m[1][2];
     for (int k = 0; k < 3; ++k) {
       s[STATE_V + k] = b.vcm[k];
       s[STATE_OMEGA + k] = b.omega[k];
@@ -474,7 +503,7 @@ void FixRigidRod::unpack_reverse_comm(int n, int *list, double *buf)
 void *FixRigidRod::extract(const char *name, int &dim)
 {
   if (strcmp(name, "polar") == 0) {    // the per-atom output, the polar axis first
-    dim = 2;
+    dim = EXTRACT_ARRAY;
     return output;
   }
   return FixRigidSmall::extract(name, dim);

@@ -13,7 +13,6 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
-#include "math_const.h"
 #include "update.h"
 #include "utils.h"
 
@@ -24,7 +23,7 @@
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
-using MathConst::MY_2PI;
+using ActiveGrain::PI;
 using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Fix wall/impulse";
@@ -39,6 +38,8 @@ static constexpr double MAX_ROUGH_SLOPE = 0.3;
 // A contact approaching faster than this fraction of the plates' peak speed A 2 pi f is an impact
 // (output IMPACTS).
 static constexpr double IMPACT_FRACTION = 0.01;
+// The restart record: the clock's origin (time and step), its time step, and the file's step.
+enum ClockRecord { CLOCK_TIME = 0, CLOCK_STEP, CLOCK_DT, FILE_STEP, NCLOCK };
 
 /* fix ID group wall/impulse zlo Z0 e E mu MU [gap G] [lid moving|fixed|none]
        [vibrate A F PHASE] [type T E MU] [rough SLOPE LENGTH SEED] */
@@ -148,7 +149,7 @@ void FixWallImpulse::check_time_step(bool warn)
     if (steps_per_period < MIN_STEPS_PER_PERIOD)
       error->all(FLERR, "{}: time step {} too large for the vibration: {:.3g} steps per period (need >= {})",
                  STYLE, dt, steps_per_period, MIN_STEPS_PER_PERIOD);
-    const double travel = MY_2PI * frequency * amplitude * dt;
+    const double travel = 2.0 * PI * frequency * amplitude * dt;
     if (warn && lid != Lid::NONE && travel > MAX_STEP_TRAVEL * gap && comm->me == 0)
       error->warning(FLERR, "{}: plates move {:.3g} per step, more than {} of the gap", STYLE, travel,
                      MAX_STEP_TRAVEL);
@@ -175,24 +176,25 @@ double FixWallImpulse::time_now() const
 void FixWallImpulse::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  // the origin, the time step counted from it, and the step of the file
-  const double clock[4] = {own_clock ? clock_time : update->atime,
-                           (double) (own_clock ? clock_step : update->atimestep), update->dt,
-                           (double) update->ntimestep};
+  double clock[NCLOCK];
+  clock[CLOCK_TIME] = own_clock ? clock_time : update->atime;
+  clock[CLOCK_STEP] = (double) (own_clock ? clock_step : update->atimestep);
+  clock[CLOCK_DT] = update->dt;
+  clock[FILE_STEP] = (double) update->ntimestep;
   const int size = sizeof(clock);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(clock, sizeof(double), 4, fp);
+  fwrite(clock, sizeof(double), NCLOCK, fp);
 }
 
 void FixWallImpulse::restart(char *buf)
 {
   const auto *clock = reinterpret_cast<const double *>(buf);
-  clock_time = clock[0];
-  clock_step = static_cast<bigint>(clock[1]);
-  clock_dt = clock[2];
+  clock_time = clock[CLOCK_TIME];
+  clock_step = static_cast<bigint>(clock[CLOCK_STEP]);
+  clock_dt = clock[CLOCK_DT];
   // A time step set after read_restart, before this fix was defined, counts from the file's step.
   if (update->dt != clock_dt) {
-    const auto file_step = static_cast<bigint>(clock[3]);
+    const auto file_step = static_cast<bigint>(clock[FILE_STEP]);
     clock_time += (file_step - clock_step) * clock_dt;
     clock_step = file_step;
     clock_dt = update->dt;
@@ -202,17 +204,17 @@ void FixWallImpulse::restart(char *buf)
 
 double FixWallImpulse::base_z(double t) const
 {
-  return z0 + amplitude * std::sin(MY_2PI * frequency * t + phase);
+  return z0 + amplitude * std::sin(2.0 * PI * frequency * t + phase);
 }
 
 double FixWallImpulse::base_vz(double t) const
 {
-  return MY_2PI * frequency * amplitude * std::cos(MY_2PI * frequency * t + phase);
+  return 2.0 * PI * frequency * amplitude * std::cos(2.0 * PI * frequency * t + phase);
 }
 
 double FixWallImpulse::base_az(double t) const
 {
-  const double omega = MY_2PI * frequency;
+  const double omega = 2.0 * PI * frequency;
   return -omega * omega * amplitude * std::sin(omega * t + phase);
 }
 
@@ -226,9 +228,9 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
   const double alid = lid == Lid::MOVING ? ab : 0.0;
   // Impacts for the lock-in tally: contacts approaching faster than a small fraction of the
   // plate's peak speed (resting contacts approach at about g dt), at the drive's phase.
-  const double peak_speed = MY_2PI * frequency * amplitude;
-  clear_delivered(std::fmod(MY_2PI * frequency * t + phase, MY_2PI),
-                  peak_speed > 0.0 ? IMPACT_FRACTION * peak_speed : -1.0);
+  const double peak_speed = 2.0 * PI * frequency * amplitude;
+  clear_delivered(std::fmod(2.0 * PI * frequency * t + phase, 2.0 * PI),
+                  peak_speed > 0.0 ? IMPACT_FRACTION * peak_speed : NO_IMPACTS);
   note_wall_speed(std::fabs(vb));
 
   double **x = atom->x, **v = atom->v;

@@ -23,9 +23,12 @@ using ActiveGrain::Vec3;
 
 static const char *const STYLE = "Fix wall/impulse/region";
 
+// The region's surface is the fix's one surface (ImpulseWall's outputs).
+enum { REGION_SURFACE = 0, NUM_SURFACES };
+
 /* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
 FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), ImpulseWall(this, 1), region(nullptr), materials(lmp, STYLE), motion_reset(false)
+    Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), region(nullptr), materials(lmp, STYLE), motion_reset(false)
 {
   if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
   region_id = arg[3];
@@ -118,7 +121,7 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
       note_wall_speed(norm(wall_velocity));
       const double gap = rc.r - radius[i];
       if (!ActiveGrain::gap_may_close(gap, Vec3(v[i]) - wall_velocity, spin_speed[i], update->dt)) continue;
-      contacts.push_back({i, 0, n, Vec3(x[i]) - n * radius[i], gap, wall_velocity, Vec3(),
+      contacts.push_back({i, REGION_SURFACE, n, Vec3(x[i]) - n * radius[i], gap, wall_velocity, Vec3(),
                           materials.of_type(type[i])});
     }
   }

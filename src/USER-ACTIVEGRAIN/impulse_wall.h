@@ -7,6 +7,7 @@
 #include "ag_contact_prediction.h"
 #include "ag_impulse.h"
 #include "fix.h"
+#include "style_inputs.h"
 
 #include <algorithm>
 #include <mpi.h>
@@ -47,7 +48,7 @@ class ImpulseWall {
   void add_virial(const ActiveGrain::Vec3 &arm, const ActiveGrain::Vec3 &force);
   // Largest speed of the wall at the atoms it looked at in this force computation (for the
   // pair style's skin warning: a wall closes gaps at its own speed).
-  double wall_speed() const { return wall_speed_; }
+  double wall_speed() const { return max_wall_speed; }
 
   // Global outputs of the wall fixes (compute_vector), one layout for both: first the fix's own
   // state (fix wall/impulse: base z, lid z, plate velocity; fix wall/impulse/region: none), then
@@ -64,64 +65,58 @@ class ImpulseWall {
   // A quantity added later goes after the last one: the indices of the existing ones never
   // change.
   enum SurfaceQuantity { IMPULSE = 0, IMPACTS, ENERGY, NUM_SURFACE_QUANTITIES };
-  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {3, 3, 3};
+  static constexpr int COMPONENTS[NUM_SURFACE_QUANTITIES] = {ActiveGrain::VEC3_SIZE, ActiveGrain::VEC3_SIZE,
+                                                               ActiveGrain::VEC3_SIZE};
 
  protected:
   // fix: the wall fix itself, whose virial (fix_modify virial yes) the contacts are tallied into.
   ImpulseWall(class Fix *fix, int nsurfaces) :
-      fix_(fix), delivered_(nsurfaces), impacts_(nsurfaces), energy_(nsurfaces)
+      wall_fix(fix), delivered(nsurfaces), impacts(nsurfaces), energy(nsurfaces)
   {
-    std::fill(fix->virial, fix->virial + 6, 0.0);
+    std::fill(fix->virial, fix->virial + ActiveGrain::NSYMMETRIC, 0.0);
   }
   int num_surface_outputs() const;
+  // An impact threshold that no contact reaches: no impacts are tallied.
+  static constexpr double NO_IMPACTS = -1.0;
   // Start a force computation's tally. A wall with a drive gives its phase (radians) and the
   // approach speed above which a contact is an impact; without one, no impacts are tallied.
   // Also clears the energies, the virial and the wall speed.
-  void clear_delivered(double drive_phase = 0.0, double impact_speed = -1.0);
-  void note_wall_speed(double speed) { wall_speed_ = std::max(wall_speed_, speed); }
+  void clear_delivered(double phase = 0.0, double threshold = NO_IMPACTS);
+  void note_wall_speed(double speed) { max_wall_speed = std::max(max_wall_speed, speed); }
   // Output k of the per-surface blocks (k counts from the first block), summed over ranks.
   double surface_output(MPI_Comm world, int k) const;
 
  private:
-  class Fix *fix_;
-  std::vector<ActiveGrain::Vec3> delivered_;    // this rank's impulse per surface, last force computation
-  std::vector<ActiveGrain::Vec3> impacts_;      // ... impacts, sum cos, sum sin of the drive phase
-  std::vector<ActiveGrain::Vec3> energy_;       // ... work, dissipated, overlap correction
-  double drive_phase_ = 0.0, impact_speed_ = -1.0, wall_speed_ = 0.0;
+  class Fix *wall_fix;
+  std::vector<ActiveGrain::Vec3> delivered;    // this rank's impulse per surface, last force computation
+  std::vector<ActiveGrain::Vec3> impacts;      // ... impacts, sum cos, sum sin of the drive phase
+  std::vector<ActiveGrain::Vec3> energy;       // ... work, dissipated, overlap correction
+  double drive_phase = 0.0, impact_speed = NO_IMPACTS, max_wall_speed = 0.0;
 };
 
 // Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then
 // "type T E MU" (T may be a range like 2*3) to override some. Parsed by both wall fixes.
 class WallMaterials : protected Pointers {
  public:
-  WallMaterials(LAMMPS *lmp, const std::string &style) : Pointers(lmp), style_(style) {}
+  WallMaterials(LAMMPS *lmp, const std::string &style_name) : Pointers(lmp), style(style_name) {}
   // Consume a material keyword at arg[iarg]; returns the next index, or iarg if not one.
   int parse(int narg, char **arg, int iarg);
   // Errors unless every type has its coefficients.
   void check_complete() const;
-  const ActiveGrain::ContactMaterial &of_type(int type) const { return per_type_[type]; }
+  const ActiveGrain::ContactMaterial &of_type(int type) const { return per_type[type]; }
 
  private:
+  // e_all and mu_all before keywords e and mu give them (valid values are >= 0).
+  static constexpr double UNSET = -1.0;
+
   ActiveGrain::ContactMaterial checked(const char *e, const char *mu) const;
-  std::string style_;
-  std::vector<ActiveGrain::ContactMaterial> per_type_;
-  std::vector<bool> set_;
-  double e_all_ = -1.0, mu_all_ = -1.0;
+  std::string style;
+  std::vector<ActiveGrain::ContactMaterial> per_type;
+  std::vector<bool> type_set;    // per type: set by keyword type
+  double e_all = UNSET, mu_all = UNSET;
 };
 
 // Error unless the pair style that resolves wall contacts is defined and atoms have radii.
 void check_wall_host(LAMMPS *lmp, const std::string &style);
-
-// Error unless e is in [0, 1] and mu >= 0: shared by the pair style and the wall fixes.
-void check_material(Error *error, const std::string &style, double e, double mu);
-
-// Largest radius of the atoms of type `type` that fix pour or fix deposit will insert during a
-// run (0 if none), read as GRANULAR's pair styles read it (the fixes' extract("radius")).
-// With groupbit (a fix's group), only inserting fixes whose atoms join that group count.
-double inserted_radius(LAMMPS *lmp, int type, int groupbit = 0);
-
-// Largest radius of the atoms of group groupbit present now, on all ranks, or to be inserted into
-// it by fix pour/deposit (all types).
-double largest_radius(LAMMPS *lmp, int groupbit);
 
 }    // namespace LAMMPS_NS

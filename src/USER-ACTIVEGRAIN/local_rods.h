@@ -8,35 +8,12 @@
 #include "atom.h"
 #include "pointers.h"
 
-#include <unordered_map>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
 class RigidBodyProvider;
-
-// Each rigid body is counted (rod computes) and solved (pair gran/impulse) on exactly one rank:
-// the one that owns its lowest-tag atom. A rank that owns an atom of a body sees all of the body
-// as owned or ghost atoms (ghost cutoff), so every such rank finds the same lowest tag.
-class LowestTagRule {
- public:
-  void clear() { lowest_.clear(); }
-  // An atom (any copy, owned or ghost) of body body_id.
-  void add(tagint body_id, tagint atom_tag)
-  {
-    auto found = lowest_.emplace(body_id, atom_tag);
-    if (!found.second && atom_tag < found.first->second) found.first->second = atom_tag;
-  }
-  // The owned copy of the body's lowest-tag atom, or -1 where another rank decides the body.
-  int deciding_atom(Atom *atom, tagint body_id) const
-  {
-    const int i = atom->map(lowest_.at(body_id));    // map() prefers the owned copy
-    return (i >= 0 && i < atom->nlocal) ? i : -1;
-  }
-
- private:
-  std::unordered_map<tagint, tagint> lowest_;
-};
 
 class LocalRods : protected Pointers {
  public:
@@ -49,25 +26,26 @@ class LocalRods : protected Pointers {
     double area;                     // projected area of the whole rod
   };
 
-  // `style` names the compute in errors; without `rods_required`, no rod fix means no rods.
-  LocalRods(LAMMPS *lmp, const char *style, bool rods_required);
+  // `error_prefix` starts the compute's error messages (its STYLE); without `required`, no rod
+  // fix means no rods.
+  LocalRods(LAMMPS *lmp, const char *error_prefix, bool required);
 
   // Regroup the rods of the atoms in groupbit.
   void update(int groupbit);
 
-  const std::vector<Rod> &rods() const { return rods_; }
+  const std::vector<Rod> &rods() const { return rod_list; }
   // Index into rods() of owned atom i's rod, or -1 for an atom that is not in a rod.
-  int rod_of_atom(int i) const { return rod_of_atom_[i]; }
+  int rod_of_atom(int i) const { return rod_index[i]; }
   // Owned rod atom i's share of its rod's projected area.
-  double area_share(int i) const { return area_share_[i]; }
+  double area_share(int i) const { return area_shares[i]; }
 
  private:
-  std::string style_;
-  bool rods_required_;
-  RigidBodyProvider *provider_ = nullptr;
-  std::vector<Rod> rods_;
-  std::vector<int> rod_of_atom_;
-  std::vector<double> area_share_;
+  std::string style;
+  bool rods_required;
+  RigidBodyProvider *provider = nullptr;
+  std::vector<Rod> rod_list;
+  std::vector<int> rod_index;         // per owned atom
+  std::vector<double> area_shares;    // per owned atom
 
   RigidBodyProvider *find_provider();
 };

@@ -27,9 +27,9 @@ class NearPairs : protected Pointers {
   // moving at up to fastest (|v| + |omega| r over owned and ghost atoms) could close the margin
   // within the step.
   void refresh(NeighList *list, const ContactRanks &ranks, double margin, double fastest);
-  const std::vector<std::pair<int, int>> &pairs() const { return pairs_; }
+  const std::vector<std::pair<int, int>> &pairs() const { return screened; }
   // Screen anew at the next refresh (the atoms may have been sorted without a list build).
-  void invalidate() { list_built_ = -1; }
+  void invalidate() { list_built = NOT_BUILT; }
 
   double memory_usage() const;
 
@@ -37,11 +37,13 @@ class NearPairs : protected Pointers {
   void build(NeighList *list, const ContactRanks &ranks);
   double largest_change() const;
 
-  std::vector<std::pair<int, int>> pairs_;    // (i, j) from i's side of the neighbor list
-  bigint list_built_ = -1;                    // neighbor list build (step) the pairs come from
-  int nall_ = 0;
-  double margin_ = 0.0;
-  std::vector<double> x_built_, radius_built_;    // per atom, as they were at the build
+  static constexpr bigint NOT_BUILT = -1;    // list_built before the first build, or to screen anew
+
+  std::vector<std::pair<int, int>> screened;    // (i, j) from i's side of the neighbor list
+  bigint list_built = NOT_BUILT;            // neighbor list build (step) the pairs come from
+  int nall_built = 0;
+  double built_margin = 0.0;
+  std::vector<double> x_built, radius_built;    // per atom, as they were at the build
 };
 
 }    // namespace LAMMPS_NS

@@ -21,7 +21,15 @@
 using namespace LAMMPS_NS;
 using ActiveGrain::RodParameters;
 
+static const char *const STYLE = "Rod_template";
+
 namespace {
+// The keywords every rod_template command must give.
+enum RequiredKeyword { LENGTH = 0, TAIL, NOSE, SPHERES, DENSITY, NREQUIRED };
+const char *const REQUIRED_KEYWORDS[NREQUIRED] = {"length", "tail", "nose", "spheres", "density"};
+// The atom types of keyword types, in its order.
+enum RodAtomType { TAIL_TYPE = 0, BODY_TYPE, NOSE_TYPE, NROD_TYPES };
+
 // Removes a file when it goes out of scope, also when an error unwinds past it.
 struct RemovedAtExit {
   std::string path;
@@ -36,44 +44,44 @@ struct RemovedAtExit {
              [types Ttail Tbody Tnose] [file NAME] [taper_check yes/no] */
 void RodTemplate::command(int narg, char **arg)
 {
-  if (narg < 1) error->all(FLERR, "Rod_template: missing template ID");
-  if (!domain->box_exist) error->all(FLERR, "Rod_template: must come after the box is defined");
+  if (narg < 1) error->all(FLERR, "{}: missing template ID", STYLE);
+  if (!domain->box_exist) error->all(FLERR, "{}: must come after the box is defined", STYLE);
   if (!atom->radius_flag || !atom->rmass_flag)
-    error->all(FLERR, "Rod_template: needs an atom style with per-atom diameter and mass (sphere)");
+    error->all(FLERR, "{}: needs an atom style with per-atom diameter and mass (sphere)", STYLE);
 
   const std::string id = arg[0];
   RodParameters p;
-  bool have[5] = {false, false, false, false, false};
-  int types[3] = {1, 2, 3};
+  bool have[NREQUIRED] = {};
+  int types[NROD_TYPES] = {1, 2, 3};
   std::string file;    // empty: a private temporary file, removed once read
   bool taper_check = false;
 
   int iarg = 1;
   auto value = [&](const char *key, int count) {
-    if (iarg + count >= narg) error->all(FLERR, "Rod_template: keyword {} needs {} value(s)", key, count);
+    if (iarg + count >= narg) error->all(FLERR, "{}: keyword {} needs {} value(s)", STYLE, key, count);
     return arg + iarg + 1;
   };
   while (iarg < narg) {
     const std::string key = arg[iarg];
     if (key == "length") {
       p.length = utils::numeric(FLERR, *value("length", 1), false, lmp);
-      have[0] = true; iarg += 2;
+      have[LENGTH] = true; iarg += 2;
     } else if (key == "tail") {
       p.tail_diameter = utils::numeric(FLERR, *value("tail", 1), false, lmp);
-      have[1] = true; iarg += 2;
+      have[TAIL] = true; iarg += 2;
     } else if (key == "nose") {
       p.nose_diameter = utils::numeric(FLERR, *value("nose", 1), false, lmp);
-      have[2] = true; iarg += 2;
+      have[NOSE] = true; iarg += 2;
     } else if (key == "spheres") {
       p.nspheres = utils::inumeric(FLERR, *value("spheres", 1), false, lmp);
-      have[3] = true; iarg += 2;
+      have[SPHERES] = true; iarg += 2;
     } else if (key == "density") {
       p.density = utils::numeric(FLERR, *value("density", 1), false, lmp);
-      have[4] = true; iarg += 2;
+      have[DENSITY] = true; iarg += 2;
     } else if (key == "types") {
-      char **v = value("types", 3);
-      for (int k = 0; k < 3; ++k) types[k] = utils::inumeric(FLERR, v[k], false, lmp);
-      iarg += 4;
+      char **v = value("types", NROD_TYPES);
+      for (int k = 0; k < NROD_TYPES; ++k) types[k] = utils::inumeric(FLERR, v[k], false, lmp);
+      iarg += 1 + NROD_TYPES;
     } else if (key == "file") {
       file = *value("file", 1);
       iarg += 2;
@@ -81,28 +89,28 @@ void RodTemplate::command(int narg, char **arg)
       taper_check = utils::logical(FLERR, *value("taper_check", 1), false, lmp);
       iarg += 2;
     } else {
-      error->all(FLERR, "Rod_template: unknown keyword {}", key);
+      error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
   }
-  const char *names[5] = {"length", "tail", "nose", "spheres", "density"};
-  for (int k = 0; k < 5; ++k)
-    if (!have[k]) error->all(FLERR, "Rod_template: keyword {} is required", names[k]);
+  for (int k = 0; k < NREQUIRED; ++k)
+    if (!have[k]) error->all(FLERR, "{}: keyword {} is required", STYLE, REQUIRED_KEYWORDS[k]);
   const std::string bad = ActiveGrain::rod_parameter_error(p);
-  if (!bad.empty()) error->all(FLERR, "Rod_template: {}", bad);
+  if (!bad.empty()) error->all(FLERR, "{}: {}", STYLE, bad);
   if (taper_check && p.nose_diameter > p.tail_diameter)
-    error->all(FLERR, "Rod_template: taper_check: nose diameter {} is wider than tail diameter {}",
+    error->all(FLERR, "{}: taper_check: nose diameter {} is wider than tail diameter {}", STYLE,
                p.nose_diameter, p.tail_diameter);
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < NROD_TYPES; ++k)
     if (types[k] < 1 || types[k] > atom->ntypes)
-      error->all(FLERR, "Rod_template: types: atom type {} is not between 1 and {}", types[k], atom->ntypes);
-  if (types[0] == types[2] || types[0] == types[1] || types[2] == types[1])
-    error->all(FLERR, "Rod_template: types: tail, body and nose types must differ so the ends are identifiable");
+      error->all(FLERR, "{}: types: atom type {} is not between 1 and {}", STYLE, types[k], atom->ntypes);
+  if (types[TAIL_TYPE] == types[NOSE_TYPE] || types[TAIL_TYPE] == types[BODY_TYPE] ||
+      types[NOSE_TYPE] == types[BODY_TYPE])
+    error->all(FLERR, "{}: types: tail, body and nose types must differ so the ends are identifiable", STYLE);
 
   ActiveGrain::RodGeometry g;
   try {
     g = ActiveGrain::make_rod_geometry(p);
   } catch (std::invalid_argument &e) {
-    error->all(FLERR, "Rod_template: {} (spheres {})", e.what(), p.nspheres);
+    error->all(FLERR, "{}: {} (spheres {})", STYLE, e.what(), p.nspheres);
   }
 
   // Rod along +x (tail to nose), centre of mass at the origin. The header carries the solid's
@@ -118,16 +126,16 @@ void RodTemplate::command(int narg, char **arg)
       try {
         pattern = (std::filesystem::temp_directory_path() / ("rod_template-" + id + "-XXXXXX")).string();
       } catch (std::filesystem::filesystem_error &e) {
-        error->one(FLERR, "Rod_template: no temporary directory ({}): use keyword file", e.what());
+        error->one(FLERR, "{}: no temporary directory ({}): use keyword file", STYLE, e.what());
       }
       const int fd = mkstemp(pattern.data());
       if (fd < 0 || !(fp = fdopen(fd, "w")))
-        error->one(FLERR, "Rod_template: cannot create a temporary file {}: {} (use keyword file)",
+        error->one(FLERR, "{}: cannot create a temporary file {}: {} (use keyword file)", STYLE,
                    pattern, utils::getsyserror());
       temporary.path = file = pattern;
     } else {
       fp = fopen(file.c_str(), "w");
-      if (!fp) error->one(FLERR, "Rod_template: cannot write {}: {}", file, utils::getsyserror());
+      if (!fp) error->one(FLERR, "{}: cannot write {}: {}", STYLE, file, utils::getsyserror());
     }
     const int n = p.nspheres;
     fmt::print(fp, "# rod_template {}: L {} tail {} nose {} spheres {} density {}\n\n", id, p.length,
@@ -138,16 +146,17 @@ void RodTemplate::command(int narg, char **arg)
     for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g} 0 0\n", i + 1, g.spheres[i].x - g.com);
     fmt::print(fp, "\nTypes\n\n");
     for (int i = 0; i < n; ++i)
-      fmt::print(fp, "{} {}\n", i + 1, i == 0 ? types[0] : (i == n - 1 ? types[2] : types[1]));
+      fmt::print(fp, "{} {}\n", i + 1,
+                 i == 0 ? types[TAIL_TYPE] : (i == n - 1 ? types[NOSE_TYPE] : types[BODY_TYPE]));
     fmt::print(fp, "\nDiameters\n\n");
     for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g}\n", i + 1, 2.0 * g.spheres[i].radius);
     fmt::print(fp, "\nMasses\n\n");
     for (int i = 0; i < n; ++i) fmt::print(fp, "{} {:.17g}\n", i + 1, g.spheres[i].mass);
     fclose(fp);
     utils::logmesg(lmp,
-                   "Rod_template {}: mass {:.6g}, COM {:.6g} from tail, inertia axial {:.6g} "
+                   "{} {}: mass {:.6g}, COM {:.6g} from tail, inertia axial {:.6g} "
                    "transverse {:.6g}, {} spheres (envelope dip {:.3g}){}\n",
-                   id, g.mass, g.com, g.inertia_axial, g.inertia_transverse, n, g.max_envelope_dip,
+                   STYLE, id, g.mass, g.com, g.inertia_axial, g.inertia_transverse, n, g.max_envelope_dip,
                    temporary.path.empty() ? ", written to " + file : "");
   }
   // Only rank 0 opens the file; the others pass the same name to the molecule command.
@@ -168,5 +177,5 @@ void RodTemplate::command(int narg, char **arg)
   const double area = std::accumulate(shares.begin(), shares.end(), 0.0);
   input->one(fmt::format("variable {}_area internal {:.17g}", id, area));
   if (comm->me == 0)
-    utils::logmesg(lmp, "Rod_template {}: projected area {:.6g} in variable {}_area\n", id, area, id);
+    utils::logmesg(lmp, "{} {}: projected area {:.6g} in variable {}_area\n", STYLE, id, area, id);
 }

@@ -1,0 +1,22 @@
+// Checks and reads of inputs shared by pair gran/impulse and the wall fixes.
+#pragma once
+
+#include "pointers.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+// Error unless e is in [0, 1] and mu >= 0.
+void check_material(Error *error, const std::string &style, double e, double mu);
+
+// Largest radius of the atoms of type `type` that fix pour or fix deposit will insert during a
+// run (0 if none), read as GRANULAR's pair styles read it (the fixes' extract("radius")).
+// With groupbit (a fix's group), only inserting fixes whose atoms join that group count.
+double inserted_radius(LAMMPS *lmp, int type, int groupbit = 0);
+
+// Largest radius of the atoms of group groupbit present now, on all ranks, or to be inserted into
+// it by fix pour/deposit (all types).
+double largest_radius(LAMMPS *lmp, int groupbit);
+
+}    // namespace LAMMPS_NS
