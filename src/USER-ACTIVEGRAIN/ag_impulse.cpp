@@ -142,7 +142,7 @@ double energetic_restitution(double un, double target_separation)
 
 }    // namespace
 
-TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n) : normal(n)
+TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n)
 {
   const Vec3 a = std::fabs(n.x) < AXIS_CHOICE_COSINE ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
   tangent1 = cross(n, a);

@@ -57,7 +57,7 @@ class TangentialStep {
   Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
 
  private:
-  Vec3 normal, tangent1, tangent2;    // the contact frame
+  Vec3 tangent1, tangent2;    // the contact frame's tangents
   // The inverse of K on the tangent plane (symmetric) and the tangential components of K n.
   double inv11 = 0, inv12 = 0, inv22 = 0, kn1 = 0, kn2 = 0;
   double stick_ratio = 0;    // sticking_ratio()

@@ -13,6 +13,7 @@
 #include "error.h"
 #include "fix.h"
 #include "impulse_wall.h"
+#include "style_inputs.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
