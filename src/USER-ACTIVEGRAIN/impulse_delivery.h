@@ -15,8 +15,8 @@ class SolverBodies;
 
 class ImpulseDelivery : protected Pointers {
  public:
-  // A virial has NUM_VIRIAL components, in LAMMPS's order xx, yy, zz, xy, xz, yz.
-  static constexpr int NUM_VIRIAL = 6;
+  // A virial's components, in LAMMPS's order xx, yy, zz, xy, xz, yz.
+  static constexpr int NUM_VIRIAL = ActiveGrain::NSYMMETRIC;
   // Per atom: contact force and torque, late impulse and its moment about the atom, and the
   // atom's share of its contacts' virial (with per-atom virial only).
   enum Column { FORCE = 0, TORQUE = 3, LATE = 6, LATE_ANGULAR = 9, VIRIAL = 12, NUM_COLUMNS = VIRIAL + NUM_VIRIAL };
