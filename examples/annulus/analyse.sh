@@ -9,15 +9,12 @@
 # the tangential order), phase.txt (phase per frame) and condensate.txt (the dense arc, its drift
 # round the ring and the rods pressing on its ends, per frame: the trap of the paper's Fig. 3).
 set -euo pipefail
-# DT: the run's time step (the deck's default, or what -var dt gave it), for times in seconds
 out=${1:?usage: analyse.sh OUTDIR [R_IN R_OUT]}
 r_in=${2:-40}
 r_out=${3:-60}
-here=$(cd "$(dirname "$0")" && pwd)
-export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
-ag() { /usr/bin/python3 -m activegrain "$@"; }
+source "$(dirname "$0")/../analyse-common.sh"
 dump="$out/annulus.dump"
-common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3 --timestep "${DT:-1.0e-4}")
+common=(--geometry annulus --centre 0 0 --r-in "${r_in}e-3" --r-out "${r_out}e-3" --length-unit 1e-3 --timestep "$timestep")
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 for coord in r theta; do
   ag profile "$dump" "${common[@]}" --coord $coord --species all --plot "$out/profile_$coord.png" > "$out/profile_$coord.txt"

@@ -5,13 +5,10 @@
 # and profile_y.png/.txt (bead and rod area fraction along x and y), kymograph.png (beads along x
 # against time), polar.txt (rod order per frame) and phase.txt (phase per frame).
 set -euo pipefail
-# DT: the run's time step (the deck's default, or what -var dt gave it), for times in seconds
 out=${1:?usage: analyse.sh OUTDIR}
-here=$(cd "$(dirname "$0")" && pwd)
-export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
-ag() { /usr/bin/python3 -m activegrain "$@"; }
+source "$(dirname "$0")/../analyse-common.sh"
 dump="$out/box.dump"
-common=(--geometry box --length-unit 1e-3 --timestep "${DT:-1.0e-4}")
+common=(--geometry box --length-unit 1e-3 --timestep "$timestep")
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 ag map "$dump" "${common[@]}" --every 10 --bins 50 50 --species beads -o "$out/map.png"
 for coord in x y; do

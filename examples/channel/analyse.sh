@@ -2,13 +2,10 @@
 # Pictures and profiles from a channel run, with python/activegrain (lengths in bead diameters).
 #   examples/channel/analyse.sh OUTDIR      (OUTDIR holds channel.dump from in.channel*)
 set -euo pipefail
-# DT: the run's time step (the deck's default, or what -var dt gave it), for times in seconds
 out=${1:?usage: analyse.sh OUTDIR}
-here=$(cd "$(dirname "$0")" && pwd)
-export PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
-ag() { /usr/bin/python3 -m activegrain "$@"; }
+source "$(dirname "$0")/../analyse-common.sh"
 dump="$out/channel.dump"
-common=(--geometry channel --length-unit 1e-3 --timestep "${DT:-1.0e-4}")
+common=(--geometry channel --length-unit 1e-3 --timestep "$timestep")
 ag snapshot "$dump" "${common[@]}" --frame -1 -o "$out/snapshot.png"
 ag profile "$dump" "${common[@]}" --coord x --species all --plot "$out/profile.png" > "$out/profile.txt"
 ag kymograph "$dump" "${common[@]}" --coord x -o "$out/kymograph.png"

@@ -61,12 +61,12 @@ def cmd_profile(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
     if args.relative_to_layer:
-        profiles = [analysis.layer_profile(fr, geom, extent=args.extent, bins=args.bins, species=args.species)
-                    for fr in frames]
+        profiles = io.run_frames(frames, lambda k, fr, previous: analysis.layer_profile(
+            fr, geom, extent=args.extent, bins=args.bins, species=args.species))
         name = "distance_ahead_of_layer"
     else:
-        profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species, count=args.count)
-                    for fr in frames]
+        profiles = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_profile(
+            fr, geom, args.coord, args.bins, args.species, count=args.count))
         name = args.coord
     mean = np.mean([p.fraction for p in profiles], axis=0)
     avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
@@ -82,7 +82,8 @@ def cmd_profile(args, out):
 def cmd_map(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    maps = [analysis.area_fraction_map(fr, geom, tuple(args.bins), args.species, count=args.count) for fr in frames]
+    maps = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_map(
+        fr, geom, tuple(args.bins), args.species, count=args.count))
     xe, ye = maps[0][0], maps[0][1]
     phi = np.mean([m[2] for m in maps], axis=0)
     if args.output.endswith(".txt") or args.output.endswith(".csv"):
@@ -98,16 +99,15 @@ def cmd_map(args, out):
 def cmd_polar(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    rows = []
-    for fr in frames:
+
+    def single_frame(k, fr, previous):
         row = {"step": fr.step, "time": fr.time}
         row.update(analysis.polarization(fr, geom))
         env = analysis.rod_environment(fr, geom)
-        finite = np.isfinite(env["cos"])
-        row["gradient_alignment"] = float(env["cos"][finite].mean()) if finite.any() else float("nan")
+        row["gradient_alignment"] = analysis.alignment_of(env["cos"])
         row["phi_b_at_rods"] = float(env["phi_b"].mean()) if len(env["phi_b"]) else float("nan")
-        rows.append(row)
-    _print_table(rows, out)
+        return row
+    _print_table(io.run_frames(frames, single_frame), out)
 
 
 def cmd_phase(args, out):
@@ -115,14 +115,13 @@ def cmd_phase(args, out):
         raise ValueError(f"--lag {args.lag}: frames back, 0 or more")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    rows = []
-    for k, fr in enumerate(frames):
-        previous = frames[k - args.lag] if args.lag and k >= args.lag else None
+
+    def single_frame(k, fr, previous):
         res = analysis.classify_phase(fr, geom, previous=previous)
-        row = {"step": fr.step, "phase": res.phase}
-        row.update({k: v for k, v in res.observables.items() if k != "layer_coord"})
-        rows.append(row)
-    _print_table(rows, out)
+        row = {"step": fr.step, "phase": res.phase.value}
+        row.update({name: v for name, v in res.observables.items() if name != "layer_coord"})
+        return row
+    _print_table(io.run_frames(frames, single_frame, lag=args.lag), out)
 
 
 def cmd_condensate(args, out):
@@ -132,22 +131,22 @@ def cmd_condensate(args, out):
         raise ValueError(f"--reach {args.reach}: rod lengths, above 0")
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    arcs = [analysis.dense_arc(fr, geom, args.threshold, args.sectors) for fr in frames]
-    rows = []
-    for k, (fr, arc) in enumerate(zip(frames, arcs)):
+    arcs = io.run_frames(frames, lambda k, fr, previous: analysis.dense_arc(fr, geom, args.threshold, args.sectors))
+
+    def single_frame(k, fr, before):
         row = {"step": fr.step, "time": fr.time}
+        arc = arcs[k]
         if arc is not None:
             at_start, at_stop = analysis.capping_rods(fr, geom, arc, args.reach)
             row.update(start_deg=float(np.degrees(arc.start)), width_deg=float(np.degrees(arc.width)),
                        phi_inside=arc.fraction, phi_outside=arc.outside,
                        rods_at_start=at_start, rods_at_stop=at_stop)
             # the drift of the beads that were in the earlier frame's arc
-            if k >= args.lag and arcs[k - args.lag] is not None:
-                before = frames[k - args.lag]
+            if before is not None and arcs[k - args.lag] is not None:
                 row["drift_speed"] = (analysis.arc_drift(fr, before, geom, arcs[k - args.lag])
                                       / (fr.time - before.time))
-        rows.append(row)
-    _print_table(rows, out)
+        return row
+    _print_table(io.run_frames(frames, single_frame, lag=args.lag), out)
 
 
 def cmd_motility(args, out):
@@ -168,7 +167,8 @@ def cmd_kymograph(args, out):
     from . import plotting
     frames = _frames(args)
     geom = _geometry(args, frames[0])
-    profiles = [analysis.area_fraction_profile(fr, geom, args.coord, args.bins, "beads") for fr in frames]
+    profiles = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_profile(
+        fr, geom, args.coord, args.bins, "beads"))
     plotting.kymograph([fr.time for fr in frames], profiles, args.output)
     out.write(f"wrote {args.output}\n")
 

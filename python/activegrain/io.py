@@ -241,3 +241,14 @@ def write_extxyz(path, frames):
     velocities per atom), a format OVITO and VMD open directly."""
     import ase.io
     ase.io.write(path, [fr.to_ase() for fr in frames], format="extxyz")
+
+
+def run_frames(frames, single_frame, lag=0, start=0, every=1):
+    """``single_frame(k, frame, previous)`` for frames ``start, start + every, ...``, where
+    ``previous`` is the frame ``lag`` places back (None when ``lag`` is 0 or there is none yet):
+    the one loop over frames of the CLI and the sweep, as MDAnalysis's ``AnalysisBase.run(start,
+    stop, step)`` calls ``_single_frame``. Returns the results in order."""
+    if lag < 0 or every < 1:
+        raise ValueError(f"lag {lag} must be >= 0 and every {every} >= 1")
+    return [single_frame(k, frames[k], frames[k - lag] if lag and k >= lag else None)
+            for k in range(start, len(frames), every)]

@@ -1,5 +1,5 @@
 """Figures: snapshots (rods as tapered shapes, beads as discs), profiles, kymographs,
-movies, and the theory's growth rates and point-force profile."""
+movies, the phase diagram of a sweep, and the theory's growth rates and point-force profile."""
 import shutil
 
 import numpy as np
@@ -9,7 +9,13 @@ from matplotlib.collections import EllipseCollection, PolyCollection
 from matplotlib.patches import Circle, Rectangle as RectPatch
 import matplotlib.pyplot as plt
 
+from .analysis import Phase
 from .geometry import Annulus
+
+# Marker, face and edge colour per phase, in the legend's order (open for the disordered ones).
+PHASE_MARKERS = {Phase.ISOTROPIC: ("o", "none", "tab:gray"), Phase.FLOCK: ("^", "tab:blue", "tab:blue"),
+                 Phase.SEGREGATED: ("s", "tab:orange", "tab:orange"), Phase.CONDENSED: ("*", "tab:red", "tab:red"),
+                 Phase.JAMMED: ("X", "black", "black")}
 
 
 def _periodic_copies(poly, box):
@@ -197,3 +203,33 @@ def plot_point_force(x, curves, pf, path=None):
     if path:
         fig.savefig(path, dpi=150)
     return fig
+
+
+def phase_diagram(points, path, title=None):
+    """Markers per phase on (phi_b, phi_r), as the paper's Figs. 2a and 3a. ``points``:
+    {(phi_b, phi_r): (majority phase, seeds that show it, seeds)} (:func:`activegrain.sweep.majority`);
+    a point where the seeds disagree shows its majority phase with ``k/n`` beside it."""
+    fig, ax = plt.subplots(figsize=(6.0, 3.8))
+    points = points
+    for phase, (marker, face, edge) in PHASE_MARKERS.items():
+        xy = [k for k, v in points.items() if v[0] == phase]
+        ax.scatter([p[0] for p in xy], [p[1] for p in xy], marker=marker, s=90, facecolors=face,
+                   edgecolors=edge, linewidths=1.5, label=phase)
+    for (b, r), (_, k, n) in points.items():
+        if k < n:
+            ax.annotate(f"{k}/{n}", (b, r), textcoords="offset points", xytext=(6, 6), fontsize=7)
+    phi_b = [k[0] for k in points]
+    phi_r = [k[1] for k in points]
+    pad_b = 0.02 + 0.05 * (max(phi_b) - min(phi_b))
+    pad_r = 0.005 + 0.05 * (max(phi_r) - min(phi_r))
+    ax.set_xlim(min(phi_b) - pad_b, max(phi_b) + pad_b)
+    ax.set_ylim(max(0.0, min(phi_r) - pad_r), max(phi_r) + pad_r)
+    ax.set_xlabel(r"$\phi_b$")
+    ax.set_ylabel(r"$\phi_r$")
+    if title:
+        ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5), frameon=False)
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return path

@@ -34,10 +34,6 @@ from .geometry import geometry_from_box
 
 RESULT = "result.json"
 REACHED = re.compile(r"ActiveGrain \w+: phi_b = ([\d.]+) \(asked [^)]*\), phi_r = ([\d.]+) \(asked")
-# the phases in the legend's order, with their markers (open for the disordered ones)
-MARKERS = {"isotropic": ("o", "none", "tab:gray"), "flock": ("^", "tab:blue", "tab:blue"),
-           "segregated": ("s", "tab:orange", "tab:orange"), "condensed": ("*", "tab:red", "tab:red"),
-           "jammed": ("X", "black", "black")}
 TABLE_KEYS = ("phi_b", "phi_r", "seed", "phase", "phi_b_reached", "phi_r_reached", "phi_total", "P",
               "segregation", "active_layer_fraction", "layer_contrast", "mobility", "frames", "wall_s")
 
@@ -132,10 +128,10 @@ def classify_run(cfg, dump):
     u = cfg.length_unit
     geom = geometry_from_box(frames[0].box, cfg.geometry, None, cfg.r_in / u,
                              None if cfg.r_out is None else cfg.r_out / u)
-    results = [analysis.classify_phase(frames[k], geom, previous=frames[k - cfg.lag] if cfg.lag else None)
-               for k in range(first, len(frames))]
-    counts = Counter(r.phase for r in results)
-    phase = max(counts, key=lambda p: (counts[p], -list(MARKERS).index(p)))
+    results = io.run_frames(frames, lambda k, frame, previous: analysis.classify_phase(frame, geom, previous=previous),
+                            lag=cfg.lag, start=first)
+    counts = Counter(r.phase.value for r in results)
+    phase = analysis.majority_phase(counts)
     numeric = {k for k, v in results[0].observables.items() if isinstance(v, (int, float))}
     mean = {k: float(np.nanmean([r.observables[k] for r in results]))
             if np.isfinite([r.observables[k] for r in results]).any() else float("nan") for k in numeric}
@@ -216,41 +212,9 @@ def majority(results):
     out = {}
     for key, phases in by_point.items():
         counts = Counter(phases)
-        phase = max(counts, key=lambda p: (counts[p], -list(MARKERS).index(p)))
+        phase = analysis.majority_phase(counts)
         out[key] = (phase, counts[phase], len(phases))
     return out
-
-
-def phase_diagram(results, path, title=None):
-    """Markers per phase on (phi_b, phi_r), as the paper's Figs. 2a and 3a; a point where the
-    seeds disagree shows its majority phase with ``k/n`` beside it."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.0, 3.8))
-    points_ = majority(results)
-    for phase, (marker, face, edge) in MARKERS.items():
-        xy = [k for k, v in points_.items() if v[0] == phase]
-        ax.scatter([p[0] for p in xy], [p[1] for p in xy], marker=marker, s=90, facecolors=face,
-                   edgecolors=edge, linewidths=1.5, label=phase)
-    for (b, r), (_, k, n) in points_.items():
-        if k < n:
-            ax.annotate(f"{k}/{n}", (b, r), textcoords="offset points", xytext=(6, 6), fontsize=7)
-    phi_b = [k[0] for k in points_]
-    phi_r = [k[1] for k in points_]
-    pad_b = 0.02 + 0.05 * (max(phi_b) - min(phi_b))
-    pad_r = 0.005 + 0.05 * (max(phi_r) - min(phi_r))
-    ax.set_xlim(min(phi_b) - pad_b, max(phi_b) + pad_b)
-    ax.set_ylim(max(0.0, min(phi_r) - pad_r), max(phi_r) + pad_r)
-    ax.set_xlabel(r"$\phi_b$")
-    ax.set_ylabel(r"$\phi_r$")
-    if title:
-        ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5), frameon=False)
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
 
 
 def run_sweep(cfg, log=sys.stderr):
@@ -276,5 +240,6 @@ def run_sweep(cfg, log=sys.stderr):
     log.write("\r" + progress_line(len(pending), len(pending), walls, time.monotonic() - start) + " " * 40 + "\n")
     ordered = [results[p] for p in todo]
     write_table(ordered, cfg.out)
-    phase_diagram(ordered, cfg.out / "phase_diagram.png", title=cfg.deck.name)
+    from .plotting import phase_diagram
+    phase_diagram(majority(ordered), cfg.out / "phase_diagram.png", title=cfg.deck.name)
     return ordered, len(pending)
