@@ -210,11 +210,10 @@ def phase_diagram(points, path, title=None):
     {(phi_b, phi_r): (majority phase, seeds that show it, seeds)} (:func:`activegrain.sweep.majority`);
     a point where the seeds disagree shows its majority phase with ``k/n`` beside it."""
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
-    points = points
     for phase, (marker, face, edge) in PHASE_MARKERS.items():
         xy = [k for k, v in points.items() if v[0] == phase]
         ax.scatter([p[0] for p in xy], [p[1] for p in xy], marker=marker, s=90, facecolors=face,
-                   edgecolors=edge, linewidths=1.5, label=phase)
+                   edgecolors=edge, linewidths=1.5, label=phase.value)
     for (b, r), (_, k, n) in points.items():
         if k < n:
             ax.annotate(f"{k}/{n}", (b, r), textcoords="offset points", xytext=(6, 6), fontsize=7)

@@ -217,6 +217,13 @@ def majority(results):
     return out
 
 
+def phase_diagram(results, path, title=None):
+    """The runs' phase diagram, one marker per (phi_b, phi_r) for the :func:`majority` of its
+    seeds (drawn by :func:`activegrain.plotting.phase_diagram`); returns ``path``."""
+    from . import plotting
+    return plotting.phase_diagram(majority(results), path, title)
+
+
 def run_sweep(cfg, log=sys.stderr):
     """Run (or resume) the sweep; returns the results in grid order and the number of runs
     made by this call. The time left is the mean wall time of the finished runs (from earlier
@@ -240,6 +247,5 @@ def run_sweep(cfg, log=sys.stderr):
     log.write("\r" + progress_line(len(pending), len(pending), walls, time.monotonic() - start) + " " * 40 + "\n")
     ordered = [results[p] for p in todo]
     write_table(ordered, cfg.out)
-    from .plotting import phase_diagram
-    phase_diagram(majority(ordered), cfg.out / "phase_diagram.png", title=cfg.deck.name)
+    phase_diagram(ordered, cfg.out / "phase_diagram.png", title=cfg.deck.name)
     return ordered, len(pending)

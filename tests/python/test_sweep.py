@@ -5,7 +5,7 @@ import pathlib
 
 import pytest
 
-from activegrain import plotting, sweep as W
+from activegrain import sweep as W
 
 
 def config(tmp_path, **kw):
@@ -69,5 +69,5 @@ def test_majority_table_and_figure(tmp_path):
     rows = list(csv.DictReader(open(tmp_path / "phases.csv")))
     assert len(rows) == 6 and rows[2]["phase"] == "flock" and float(rows[0]["mobility"]) == 0.2
     assert (tmp_path / "phases.txt").read_text().count("\n") == 7
-    png = plotting.phase_diagram(W.majority(results()), tmp_path / "d.png").read_bytes()
+    png = W.phase_diagram(results(), tmp_path / "d.png").read_bytes()
     assert png[:4] == b"\x89PNG"
