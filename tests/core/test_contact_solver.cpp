@@ -107,8 +107,11 @@ TEST(ContactSolver, OneContactOfAnIslandGetsStrongesImpact)
       std::printf("[ measured ] mu <= %.1f, resolution %4d: largest relative impulse error %.2g (%d impacts)\n",
                   mu, resolution, worst, cases);
       EXPECT_GT(cases, 200);
-      if (mu == 0.0) EXPECT_LT(worst, 3.0 / resolution);
-      else if (resolution >= 150) EXPECT_LT(worst, 1e-2);
+      if (mu == 0.0) {
+        EXPECT_LT(worst, 3.0 / resolution);
+      } else if (resolution >= 150) {
+        EXPECT_LT(worst, 1e-2);
+      }
     }
   }
 }

@@ -1,0 +1,38 @@
+// One contact of the contact solver (ag_contact_solver.h) between two of its rigid bodies, as
+// the solver's algorithms share it. No LAMMPS in here.
+#pragma once
+
+#include "ag_impulse.h"
+
+#include <vector>
+
+namespace ActiveGrain {
+
+struct SolverContact {
+  int body1 = 0, body2 = 0;       // solver body indices; the normal points from 1 to 2
+  Vec3 r1, r2;                    // lever arms: contact point minus each body's centre of mass
+  Vec3 n;                         // unit normal
+  ContactMaterial material;
+  double min_separation = 0.0;    // normal velocity the contact must at least leave with
+  // Relative velocity the contact gains from other forces (gravity, a wall's acceleration)
+  // between the time of the bodies' velocities and the moment it closes: the law acts on the
+  // relative velocity at that moment.
+  Vec3 gain;
+  double time = 0.0;              // when within the step it closes (0: touching at the start)
+  // Filled by the solve:
+  Mat3 K;
+  bool isolated = false;          // the only contact of both its (movable) bodies
+  Vec3 impulse;                   // on body 2 (minus on body 1)
+  Vec3 late;                      // the sum of impulse times when in the step it acted
+  // Of a contact that shares a body (not isolated): n.K.n, and its friction's tangential step.
+  double knn = 0.0;
+  TangentialStep tangential;
+};
+
+// The contact's relative velocity (body 2 minus body 1) at the moment it closes.
+inline Vec3 relative_velocity(const std::vector<RigidBodyState> &bodies, const SolverContact &c)
+{
+  return bodies[c.body2].velocity_at_arm(c.r2) - bodies[c.body1].velocity_at_arm(c.r1) + c.gain;
+}
+
+}    // namespace ActiveGrain

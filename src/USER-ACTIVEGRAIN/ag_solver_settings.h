@@ -1,0 +1,35 @@
+// The contact solver's settings (ag_contact_solver.h): its resolution and every threshold that
+// changes the outcome, in one place. No LAMMPS in here.
+#pragma once
+
+#include <limits>
+
+namespace ActiveGrain {
+
+struct SolverSettings {
+  int resolution = 150;    // sub-steps per half oscillation of the stiffest engaged contact
+  int max_substeps = 1000000;    // per island; then the island's impact stops where it is
+  // Island contacts that close within window of the first are one compliant impact; the rest
+  // follow in order. Infinite: all contacts of an island are one impact, whenever they close.
+  double window = std::numeric_limits<double>::infinity();
+  double step = std::numeric_limits<double>::infinity();    // contacts closing later wait
+  // A compliant impact ends once no spring is loaded and no contact approaches faster than this
+  // fraction of the fastest approach before it: a dense cluster's slow re-collisions are left to
+  // the next step, which finds them as contacts again. Smaller: longer impacts, less left over.
+  double settled_approach = 1.0e-2;
+  // A contact approaching at most this many times as fast as its gain makes it (a rod lying on a
+  // plate under gravity) is resting: nanometres of gap set when it closes, so it counts as
+  // touching from the start instead of taking a place in the order of impacts.
+  double resting_gain = 2.0;
+  // Impacts in order an island takes within a step at most; contacts that would close after them
+  // wait for the next step. Bounds the work of rods bouncing between base and lid with little play.
+  int max_impacts_in_order = 64;
+  // The overlap correction's Jacobi sweeps stop once every overlap opens within this fraction of
+  // its minimum separation velocity, or after max_overlap_sweeps: overlaps squeezed from opposite
+  // sides (a rod tilted between base and lid) cannot all open at once, and each step removes only
+  // a fraction of an overlap anyway. Smaller or more: overlaps open more exactly, at more cost.
+  double overlap_tolerance = 1.0e-2;
+  int max_overlap_sweeps = 100;
+};
+
+}    // namespace ActiveGrain
