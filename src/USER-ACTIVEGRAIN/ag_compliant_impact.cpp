@@ -139,10 +139,20 @@ bool CompliantImpact::ended(const Engagement &found) const
       (!found.engaged && !std::isfinite(found.to_contact));
 }
 
+// A flight of time zero is an underflow: the nearest spring's gap to its offset is denormal (an
+// elastic one back at zero compression), and no flight can close it. It starts at its offset, or
+// the impact would fly forever.
 void CompliantImpact::fly(double time)
 {
   for (std::size_t k = 0; k < size(); ++k) springs[k].compress(-dot(velocities[k], contact(k).n) * time);
   previous_dtau = 0.0;
+  if (time > 0.0) return;
+  for (std::size_t k = 0; k < size(); ++k) {
+    Spring &s = springs[k];
+    const double un = dot(velocities[k], contact(k).n);
+    if (un < approaching_below && s.compression < s.offset() && (s.offset() - s.compression) / -un == 0.0)
+      s.compression = s.offset();
+  }
 }
 
 double CompliantImpact::substep_size(bool changed)

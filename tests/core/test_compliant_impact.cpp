@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -105,6 +106,29 @@ TEST(CompliantImpact, FreeFlightReachesTheNextContact)
   EXPECT_EQ(norm(sandwich.bodies[2].v - bead_velocity), 0.0);    // flight changes no velocity
   const CompliantImpact::Engagement next = impact.classify();
   EXPECT_TRUE(next.engaged || next.to_contact <= 1e-15 * found.to_contact);
+}
+
+TEST(CompliantImpact, FreeFlightOfAnUnderflowingGapReachesTheContact)
+{
+  // An elastic lid spring (offset 0) a denormal short of zero compression, approached at 3: the
+  // flight time underflows to zero, and the flight still ends at the contact (not flying forever).
+  Sandwich sandwich(1.0);
+  sandwich.bodies[2].v = Vec3(0, 0, 3);
+  const SolverSettings settings;
+  CompliantImpact impact;
+  impact.resize(sandwich.bodies.size());
+  impact.start(sandwich.bodies, sandwich.contacts, sandwich.island, settings);
+  impact.spring(1).peak = 1.0;
+  impact.spring(1).unloading = true;
+  impact.spring(1).compression = -std::numeric_limits<double>::denorm_min();
+  const CompliantImpact::Engagement found = impact.classify();
+  ASSERT_FALSE(found.engaged);
+  ASSERT_FALSE(impact.ended(found));
+  ASSERT_EQ(found.to_contact, 0.0);
+  impact.fly(found.to_contact);
+  EXPECT_EQ(impact.spring(1).compression, 0.0);
+  EXPECT_EQ(impact.spring(0).compression, 0.0);
+  EXPECT_TRUE(impact.classify().engaged);
 }
 
 TEST(CompliantImpact, TakeBackLeavesAPlasticContactAtRest)
