@@ -124,7 +124,7 @@ void ContactAssembly::add_contact(int body1, int body2, const AtomContact &atoms
   AtomContact located = atoms;
   located.approach = prediction.approach;
   located.velocity_before = u;
-  located.wall_velocity = solver.body(body1).v + wall_acceleration * prediction.time_to_contact;
+  if (atoms.wall) located.wall_velocity = solver.body(body1).v + wall_acceleration * prediction.time_to_contact;
   found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, prediction, located});
   step.overlap = std::max(step.overlap, -gap);
 }

@@ -34,7 +34,7 @@ class ContactAssembly : protected Pointers {
     ActiveGrain::Vec3 point;
     ActiveGrain::Vec3 velocity_before;    // relative velocity at the contact before the solve
     double approach;                      // normal approach speed when it closes (>= 0)
-    ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes
+    ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes (0 for a pair)
   };
   // What the atoms did at the step's start: largest |v| + |omega| r of owned atoms and of owned
   // and ghost atoms, largest speed of a wall, largest excess of an owned atom's radius over its

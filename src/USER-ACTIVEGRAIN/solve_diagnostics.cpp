@@ -93,15 +93,13 @@ SolveDiagnostics::Energies SolveDiagnostics::tally_energy(const ActiveGrain::Con
   Energies sums;
   for (int c = 0; c < solver.num_contacts(); c++) {
     const ContactAssembly::AtomContact &ac = assembly.atoms_of(c);
-    if (ac.atom1 >= 0) {
-      const ActiveGrain::ContactEnergy energy = ActiveGrain::contact_energy(solver, c, ac.velocity_before, ac.approach);
-      sums.overlap_work += energy.overlap_work;
-      sums.dissipated_pair += energy.dissipated;
-      continue;
-    }
     const ActiveGrain::ContactEnergy energy =
         ActiveGrain::contact_energy(solver, c, ac.velocity_before, ac.approach, ac.wall_velocity);
     sums.overlap_work += energy.overlap_work;
+    if (!ac.wall) {
+      sums.dissipated_pair += energy.dissipated;
+      continue;
+    }
     sums.wall_work += energy.wall_work;
     sums.dissipated_wall += energy.dissipated;
     ac.wall->add_energy(ac.surface, energy.wall_work, energy.dissipated, energy.overlap_work);
