@@ -15,7 +15,9 @@ Frames are parsed here, in double precision (a dump written with ``dump_modify f
 %.12g`` keeps 12 digits; MDAnalysis's reader would hold positions as float32, 1e-7 of the
 box). The box must not change during a run and the header must be the plain one.
 """
+import collections
 import itertools
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -83,30 +85,94 @@ class Frame:
 _POSITION_COLUMNS = (("x", "y", "z"), ("xu", "yu", "zu"), ("xs", "ys", "zs"))
 
 
-def _frame_headers(f, path):
-    """Yield (step, box, columns, n) at each frame of open dump ``f``, positioned at its rows."""
+class TruncatedDumpWarning(UserWarning):
+    """A dump ends within a frame (its run was killed while writing it, or is still writing):
+    its whole frames are read, the partial one is left out."""
+
+
+def _partial(line):
+    """True for a line cut short by the end of the file."""
+    return not line.endswith("\n")
+
+
+def _frames_in(f, path, wanted=()):
+    """Yield ``(index, step, box, columns, rows)`` for the whole frames of open dump ``f``,
+    ``rows`` (the atom lines) only for an index in ``wanted``, else None. A frame cut short by
+    the end of the file ends the iteration with ``(index, step, None, None, None)`` (``step``
+    None when the cut is before it)."""
+    index = 0
     for line in f:
+        if _partial(line) and index and "ITEM: TIMESTEP\n".startswith(line):
+            yield index, None, None, None, None        # cut within the next frame's first line
+            return
         if not line.strip():
             continue
         if line.startswith(("ITEM: UNITS", "ITEM: TIME\n")):
             raise ValueError(f"{path}: dumps written with 'dump_modify units yes' or 'time yes' "
                              "are not supported (plain header expected)")
+        if not line.startswith("ITEM: TIMESTEP"):
+            raise ValueError(f"{path}: not a LAMMPS text dump (ITEM: TIMESTEP / ITEM: ATOMS expected)")
         head = [line] + [f.readline() for _ in range(8)]
-        if not head[0].startswith("ITEM: TIMESTEP") or not head[8].startswith("ITEM: ATOMS"):
+        cut = next((k for k, h in enumerate(head) if _partial(h)), None)
+        try:
+            step = int(head[1]) if cut is None or cut > 1 else None
+        except ValueError:
+            raise ValueError(f"{path}: not a LAMMPS text dump (a step number after ITEM: TIMESTEP expected)") from None
+        if cut is not None:
+            yield index, step, None, None, None
+            return
+        if not head[8].startswith("ITEM: ATOMS"):
             raise ValueError(f"{path}: not a LAMMPS text dump (ITEM: TIMESTEP / ITEM: ATOMS expected)")
         flags = head[4].split()[3:]
         if any(x in ("xy", "xz", "yz") for x in flags):
             raise ValueError(f"{path}: triclinic boxes are not supported")
         if len(flags) < 3:
             flags = ["pp", "pp", "pp"]
-        bounds = np.array([[float(v) for v in head[5 + k].split()[:2]] for k in range(3)])
+        try:
+            bounds = np.array([[float(v) for v in head[5 + k].split()[:2]] for k in range(3)])
+            n = int(head[3])
+        except ValueError:
+            raise ValueError(f"{path}: frame at step {step}: not a LAMMPS text dump header "
+                             "(atom count, box bounds)") from None
         box = Box(tuple(bounds[:, 0]), tuple(bounds[:, 1]), tuple(fl[0] == "p" for fl in flags))
-        yield int(head[1]), box, head[8].split()[2:], int(head[3])
+        columns = head[8].split()[2:]
+        if index in wanted:
+            rows = list(itertools.islice(f, n))
+            whole = len(rows) == n and not (n and _partial(rows[-1]))
+        else:
+            rows = None
+            collections.deque(itertools.islice(f, max(n - 1, 0)), maxlen=0)   # skipped, fast
+            last = f.readline() if n else "\n"
+            whole = not _partial(last)
+        if not whole:
+            yield index, step, None, None, None
+            return
+        yield index, step, box, columns, rows
+        index += 1
+
+
+def _count(path):
+    """(number of whole frames, cut, step of the last whole frame): ``cut`` is None for a dump
+    that ends at the end of a frame, else the step of the frame the file ends within (-1 when
+    the file ends before that frame's step)."""
+    n, cut, last = 0, None, None
+    with open(path) as f:
+        for index, step, box, _, _ in _frames_in(f, path):
+            if box is None:
+                cut = step if step is not None else -1
+                break
+            n, last = index + 1, step
+    return n, cut, last
 
 
 def _frame(step, timestep, box, columns, rows, path):
-    table = np.fromstring(" ".join(rows), sep=" ").reshape(len(rows), len(columns)) if rows \
-        else np.zeros((0, len(columns)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)   # numpy: "could not be read to its end"
+        table = np.fromstring(" ".join(rows), sep=" ") if rows else np.zeros(0)
+    if table.size != len(rows) * len(columns):
+        raise ValueError(f"{path}: frame at step {step}: its {len(rows)} atom rows are not "
+                         f"{len(columns)} numbers each ({' '.join(columns)})")
+    table = table.reshape(len(rows), len(columns))
     col = {c: table[:, i] for i, c in enumerate(columns)}
     missing = [c for c in ("id", "mol", "radius") if c not in col]
     xyz = next((names for names in _POSITION_COLUMNS if all(c in col for c in names)), None)
@@ -133,40 +199,51 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
     ``frame.time = step * timestep``. ``start``, ``stop``, ``every`` slice the frames.
     Positions are wrapped into the box along periodic axes (rods are regrouped by the
     minimum image).
+
+    A dump that ends within a frame (a run killed while writing it) is read up to its last
+    whole frame, with a :class:`TruncatedDumpWarning` naming the file and the frames read.
     """
-    wanted = set(range(count_frames(path))[slice(start, stop, every)])
+    yield from _read(path, count_frames(path), length_unit, timestep, start, stop, every)
+
+
+def _read(path, n, length_unit=1.0, timestep=1.0, start=None, stop=None, every=None):
+    """The frames of the first ``n`` (whole) frames of ``path`` that the slice selects."""
+    wanted = set(range(n)[slice(start, stop, every)])
     first_box = None
     with open(path) as f:
-        for index, (step, box, columns, n) in enumerate(_frame_headers(f, path)):
+        for index, step, box, columns, rows in _frames_in(f, path, wanted):
+            if index >= n or box is None:      # a frame written since the count, or cut short
+                break
             first_box = first_box or box
             if not np.allclose(box.lengths, first_box.lengths, rtol=1e-6):
                 raise ValueError(f"{path}: the box changes at step {step}; only fixed boxes are supported")
-            rows = list(itertools.islice(f, n))
-            if len(rows) < n:
-                raise ValueError(f"{path}: frame at step {step} is truncated")
             if index in wanted:
                 frame = _frame(step, timestep, box, columns, rows, path)
                 yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
 
 
 def count_frames(path):
-    """Number of frames in a dump."""
-    with open(path) as f:
-        n = sum(1 for line in f if line.startswith("ITEM: TIMESTEP"))
+    """Number of whole frames in a dump (a :class:`TruncatedDumpWarning` if it ends within a
+    frame; ValueError if it holds no whole frame)."""
+    n, cut, last = _count(path)
     if n == 0:
-        with open(path) as f:
-            next(_frame_headers(f, path), None)  # says why it is not a dump
+        if cut is not None:
+            raise ValueError(f"{path}: no whole frame (the file ends within its first frame)")
         raise ValueError(f"{path}: no frames")
+    if cut is not None:
+        warnings.warn(f"{path}: ends within a frame (a run killed while writing it?): read its {n} "
+                      f"whole frame(s), to step {last}, without the partial frame after it",
+                      TruncatedDumpWarning, stacklevel=3)
     return n
 
 
 def read_frame(path, index=-1, **kw):
-    """One frame of a dump (``index`` as in a Python list; -1 is the last)."""
+    """One frame of a dump (``index`` as in a Python list; -1 is the last whole frame)."""
     n = count_frames(path)
     if not -n <= index < n:
         raise ValueError(f"{path}: no frame {index} (the dump has {n})")
     index %= n
-    return next(read_dump(path, start=index, stop=index + 1, **kw))
+    return next(_read(path, n, start=index, stop=index + 1, **kw))
 
 
 def write_dump(path, frames, append=False):
@@ -206,7 +283,6 @@ def to_universe(frames):
     box as ``dimensions``, one trajectory frame per frame (``u.select_atoms("resname ROD")``,
     ``u.residues``). MDAnalysis keeps positions as float32: the measurements of this package
     work on the frames themselves, in double precision."""
-    import warnings
     with warnings.catch_warnings():
         # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
         # which override ours: import it first, here, so that the warning is not printed.

@@ -145,3 +145,74 @@ def test_frames_as_an_mdanalysis_universe():
     u.trajectory[1]
     assert np.allclose(u.atoms.positions, frames[1].pos - frames[1].box.lo, atol=1e-4)
     assert np.allclose(u.dimensions[:3], frames[1].box.lengths)
+
+
+def three_frames(path):
+    """A dump of three frames (steps 0, 100, 200) in metres; its text."""
+    rng = np.random.default_rng(5)
+    box = S.channel_box(30, 10)
+    beads = S.lattice_beads(0, 30, 0, 10, 2.0)
+    centres, axes = S.random_rods(2, (5, 25, 3, 7), rng)
+    write_dump(path, [S.make_frame(box, beads, 0.5, centres + 0.1 * k, axes, step=100 * k).scaled(1e-3)
+                      for k in range(3)])
+    return path.read_text()
+
+
+def cut_points(text):
+    """Where a killed run can leave a dump of three frames: (name, length kept)."""
+    third = text.index("ITEM: TIMESTEP\n200")
+    rows = text.index("ITEM: ATOMS", third)
+    rows = text.index("\n", rows) + 1
+    return [("within the third frame's first line", third + 7),
+            ("after its ITEM: TIMESTEP", third + len("ITEM: TIMESTEP\n")),
+            ("within its box bounds", text.index("ITEM: BOX BOUNDS", third) + 30),
+            ("after its header", rows),
+            ("within an atom row", rows + 200),
+            ("within its last row", len(text) - 3),
+            ("at its last row's newline", len(text) - 1)]
+
+
+@pytest.mark.parametrize("where", range(7))
+def test_a_dump_cut_within_a_frame_is_read_to_its_last_whole_frame(tmp_path, where):
+    """A run killed while writing its dump: the whole frames, a warning naming the file and how
+    many; the same for read_dump, read_frame and count_frames."""
+    from activegrain.io import TruncatedDumpWarning, count_frames
+    whole = tmp_path / "whole.dump"
+    text = three_frames(whole)
+    name, keep = cut_points(text)[where]
+    cut = tmp_path / "cut.dump"
+    cut.write_text(text[:keep])
+    expected = list(read_dump(str(whole), length_unit=1e-3))[:2]
+    with pytest.warns(TruncatedDumpWarning) as caught:
+        frames = list(read_dump(str(cut), length_unit=1e-3))
+    assert len(caught) == 1, name
+    message = str(caught[0].message)
+    assert str(cut) in message and "its 2 whole frame(s), to step 100" in message, message
+    assert [f.step for f in frames] == [0, 100], name
+    for got, want in zip(frames, expected):
+        assert np.array_equal(got.ids, want.ids) and np.array_equal(got.pos, want.pos)
+    with pytest.warns(TruncatedDumpWarning, match="2 whole frame"):
+        assert read_frame(str(cut)).step == 100           # -1: the last whole frame
+    with pytest.warns(TruncatedDumpWarning):
+        assert count_frames(str(cut)) == 2
+
+
+def test_a_whole_dump_reads_without_warning_and_one_cut_in_its_first_frame_is_refused(tmp_path):
+    import warnings
+    whole = tmp_path / "whole.dump"
+    text = three_frames(whole)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert [f.step for f in read_dump(str(whole))] == [0, 100, 200]
+    cut = tmp_path / "first.dump"
+    cut.write_text(text[:text.index("ITEM: ATOMS") + 100])
+    with pytest.raises(ValueError, match="no whole frame"):
+        list(read_dump(str(cut)))
+
+
+def test_rows_that_do_not_match_the_columns_are_named(tmp_path):
+    p = tmp_path / "rows.dump"
+    p.write_text("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n"
+                 "0 1\n0 1\n0 1\nITEM: ATOMS id mol type radius x y z\n1 0 1 0.5 0.5 0.5 0.5\n2 0 C 0.5 0.5 0.5\n")
+    with pytest.raises(ValueError, match=r"frame at step 0: its 2 atom rows are not 7 numbers each"):
+        read_frame(str(p))
