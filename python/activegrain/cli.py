@@ -4,6 +4,10 @@ Every dump command takes the cell geometry (``--geometry``; auto reads the box f
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
 ``--length-unit`` (e.g. 1e-3 to work in bead diameters from a dump in metres) and
 ``--timestep`` (time per MD step).
+
+A bad argument or input prints one line, ``ERROR: activegrain COMMAND: ...`` (exit status 2 for
+a command line that does not parse, else 1); a dump that ends within a frame (a killed
+run) is read to its last whole frame with a line ``WARNING: activegrain COMMAND: ...``.
 """
 import argparse
 import json
@@ -12,10 +16,11 @@ import pathlib
 import shutil
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 
-from . import analysis, io, motility, theory
+from . import _env, analysis, io, motility, theory
 from .geometry import geometry_from_box
 
 
@@ -263,9 +268,17 @@ def _default_lmp():
     return str(pathlib.Path(__file__).resolve().parents[2] / "build" / "lmp")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one line for a bad command line, not the usage block."""
+
+    def error(self, message):
+        name = self.prog.replace("python3 -m ", "")
+        self.exit(2, f"ERROR: {name}: {message} (see {self.prog} --help)\n")
+
+
 def build_parser():
-    ap = argparse.ArgumentParser(prog="python3 -m activegrain", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = _Parser(prog="python3 -m activegrain", description=__doc__,
+                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("profile", help="area-fraction profile (mean over the frames)")
@@ -409,11 +422,40 @@ def build_parser():
     return ap
 
 
+def _error_text(e):
+    """One line for an error met by a command."""
+    if isinstance(e, OSError) and e.filename is not None and e.strerror:
+        return f"{e.filename}: {e.strerror}"         # not "[Errno 2] No such file or directory: 'x'"
+    return " ".join(str(e).split()) or type(e).__name__
+
+
 def main(argv=None, out=None):
-    args = build_parser().parse_args(argv)
-    try:
-        args.func(args, out or sys.stdout)
-    except (ValueError, RuntimeError, OSError, FloatingPointError, subprocess.TimeoutExpired) as e:
-        sys.stderr.write(f"activegrain {args.command}: {e}\n")
+    """Run the command line; returns the exit status (0, 1 for an error met by the command; a
+    bad command line exits with status 2)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    name = f"activegrain {args.command}"
+    if getattr(args, "geometry", None) == "annulus" and args.r_out is None:   # before reading a dump
+        sys.stderr.write(f"ERROR: {name}: --geometry annulus needs --r-out\n")
         return 1
+    show = warnings.showwarning
+
+    def one_line(message, category, *rest, **kw):
+        if issubclass(category, io.TruncatedDumpWarning):
+            sys.stderr.write(f"WARNING: {name}: {message}\n")
+        else:
+            show(message, category, *rest, **kw)
+    with warnings.catch_warnings():
+        warnings.showwarning = one_line
+        warnings.simplefilter("always", io.TruncatedDumpWarning)     # each dump's, every call
+        try:
+            args.func(args, out or sys.stdout)
+        except ModuleNotFoundError as e:
+            if not _env.is_third_party(e.name):
+                raise
+            sys.stderr.write(_env.missing_module_line(e.name) + "\n")
+            return 1
+        except (ValueError, RuntimeError, OSError, FloatingPointError, subprocess.TimeoutExpired) as e:
+            sys.stderr.write(f"ERROR: {name}: {_error_text(e)}\n")
+            return 1
     return 0
