@@ -9,18 +9,34 @@ and holds the area fractions the deck reached, the phase that
 :func:`activegrain.analysis.classify_phase` gives the last frames of its dump (the majority
 over them, each frame against the one ``lag`` frames earlier for the mobility that decides
 "jammed") with the observables, and its wall time. A second call skips the runs that are done
-(an unfinished run's folder is started afresh), so an interrupted sweep resumes. Progress goes
-to stderr with the time left estimated from the finished runs' wall times. At the end the
-table (``phases.txt``, ``phases.csv``) and the phase diagram (``phase_diagram.png``, markers
-per phase on phi_b and phi_r axes, as the paper's Figs. 2a and 3a) are written into ``DIR``.
+(an unfinished run's folder is started afresh), so an interrupted sweep resumes.
+
+A point is done only when its run has ended cleanly and its result is written: ``run.json``
+(the run's command, wall time and reached fractions) is written once LAMMPS has exited with
+status 0 and no ERROR, ``result.json`` once the dump is classified, each to a temporary file
+made durable and then renamed over the name, so that a marker is complete or absent, whenever
+the sweep or its run is killed (SIGKILL included). A folder without ``run.json`` (a run killed,
+timed out or failed) is run afresh; one with ``run.json`` but no readable ``result.json`` (the
+classification failed or was cut short) is classified again without running the deck again.
+A run gets SIGTERM when the sweep dies (Linux), so that no orphaned run writes into a folder
+that a resumed sweep starts afresh, and a lock file in ``DIR`` keeps a second sweep out while
+one runs there.
+
+Progress goes to stderr with the time left estimated from the finished runs' wall times. At
+the end the table (``phases.txt``, ``phases.csv``) and the phase diagram (``phase_diagram.png``,
+markers per phase on phi_b and phi_r axes, as the paper's Figs. 2a and 3a) are written into
+``DIR``.
 """
 import csv
+import ctypes
+import fcntl
 import itertools
 import json
 import os
 import pathlib
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -32,7 +48,11 @@ import numpy as np
 from . import analysis, io
 from .geometry import geometry_from_box
 
-RESULT = "result.json"
+RESULT = "result.json"     # the point is done: its run ended cleanly and was classified
+RUN = "run.json"           # its run ended cleanly (exit 0, no ERROR): what classifying it needs
+LOCK = ".sweep.lock"       # held by the sweep running in a folder
+RUN_KEYS = ("phi_b", "phi_r", "seed", "phi_b_reached", "phi_r_reached", "wall_s", "command")
+RESULT_KEYS = RUN_KEYS + ("phase", "phase_counts", "frames", "observables")
 REACHED = re.compile(r"ActiveGrain \w+: phi_b = ([\d.]+) \(asked [^)]*\), phi_r = ([\d.]+) \(asked")
 TABLE_KEYS = ("phi_b", "phi_r", "seed", "phase", "phi_b_reached", "phi_r_reached", "phi_total", "P",
               "segregation", "active_layer_fraction", "layer_contrast", "mobility", "frames", "wall_s")
@@ -138,36 +158,138 @@ def classify_run(cfg, dump):
     return phase, dict(counts), mean, len(results)
 
 
-def run_point(cfg, phi_b, phi_r, seed):
-    """Run one point (unless done) and return its result dict."""
+def write_json(path, data):
+    """Write ``data`` as JSON to ``path`` atomically and durably: to a temporary file beside it,
+    flushed to disk, then renamed over ``path``, so that ``path`` is the whole of it or absent
+    (or its older whole self), whenever the writer is killed or the machine stops."""
+    path = pathlib.Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "w") as f:
+        f.write(json.dumps(data, indent=1))
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+    try:                                   # the rename itself to disk
+        fd = os.open(path.parent, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def read_marker(path, keys, point):
+    """The dict of marker ``path`` (``run.json`` or ``result.json``) if it is whole and is
+    ``point``'s (phi_b, phi_r, seed), else None: a marker missing, cut short or someone else's
+    does not make a point done."""
+    try:
+        data = json.loads(pathlib.Path(path).read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or any(k not in data for k in keys):
+        return None
+    if (data["phi_b"], data["phi_r"], data["seed"]) != tuple(point):
+        return None
+    return data
+
+
+def point_state(cfg, phi_b, phi_r, seed):
+    """``("done", result)``, ``("ran", run record)`` (the run ended cleanly, its classification
+    is missing) or ``("todo", None)`` (no run, or one that did not end cleanly)."""
+    folder, point = run_dir(cfg, phi_b, phi_r, seed), (phi_b, phi_r, seed)
+    result = read_marker(folder / RESULT, RESULT_KEYS, point)
+    if result is not None:
+        return "done", result
+    run = read_marker(folder / RUN, RUN_KEYS, point)
+    return ("ran", run) if run is not None else ("todo", None)
+
+
+_PR_SET_PDEATHSIG = 1
+
+
+def _end_with_parent():
+    """``preexec_fn`` (Linux) that has the kernel send the run SIGTERM when the sweep dies, even
+    by SIGKILL: mpirun passes it on to its ranks. Else a killed sweep leaves its run writing into
+    a folder that the resumed sweep starts afresh."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    parent = os.getpid()
+
+    def preexec():
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+        if os.getppid() != parent:         # the sweep died before prctl took effect
+            os._exit(1)
+    return preexec
+
+
+def _launch(cmd, cwd, screen, timeout, name):
+    """Run ``cmd``; its exit status. Past ``timeout`` seconds it gets SIGTERM (mpirun passes it
+    on to its ranks), SIGKILL 10 s later, and RuntimeError says so."""
+    preexec = _end_with_parent() if sys.platform.startswith("linux") else None
+    proc = subprocess.Popen(cmd, cwd=cwd, stdout=screen, stderr=subprocess.STDOUT, preexec_fn=preexec)
+    try:
+        return proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        raise RuntimeError(f"run {name} stopped after --timeout {timeout:g} s; "
+                           "it is run afresh when the sweep is resumed") from None
+    finally:
+        if proc.poll() is None:            # an exception here (Ctrl-C): do not leave it running
+            proc.terminate()
+            proc.wait()
+
+
+def simulate(cfg, phi_b, phi_r, seed):
+    """Run the deck for one point in a fresh folder; its run record, written to ``run.json``
+    only when LAMMPS exited with status 0 and printed no ERROR (RuntimeError otherwise)."""
     folder = run_dir(cfg, phi_b, phi_r, seed)
-    done = folder / RESULT
-    if done.is_file():
-        return json.loads(done.read_text()), False
     if folder.exists():
         shutil.rmtree(folder)          # an unfinished run starts afresh
     folder.mkdir(parents=True)
     cmd = command(cfg, phi_b, phi_r, seed, folder)
     start = time.monotonic()
     with open(folder / "screen.txt", "w") as screen:
-        proc = subprocess.run(cmd, cwd=cfg.deck.parent, stdout=screen, stderr=subprocess.STDOUT,
-                              timeout=cfg.timeout)
+        code = _launch(cmd, cfg.deck.parent, screen, cfg.timeout, folder.name)
     wall = time.monotonic() - start
     text = (folder / "screen.txt").read_text(errors="replace")
-    if proc.returncode != 0 or "ERROR" in text:
+    if code != 0 or "ERROR" in text:
         errors = [l for l in text.splitlines() if "ERROR" in l]
-        raise RuntimeError(f"run {folder.name} failed (exit {proc.returncode}): "
-                           f"{errors[0] if errors else text[-500:]} (see {folder / 'screen.txt'})")
+        how = f"killed by {signal.Signals(-code).name}" if code < 0 and -code in signal.valid_signals() \
+            else f"exit {code}"
+        raise RuntimeError(f"run {folder.name} failed ({how}): "
+                           f"{errors[0] if errors else text[-500:]} (see {folder / 'screen.txt'}); "
+                           "it is run afresh when the sweep is resumed")
     reached = REACHED.findall(text)
+    run = {"phi_b": phi_b, "phi_r": phi_r, "seed": seed,
+           "phi_b_reached": float(reached[-1][0]) if reached else float("nan"),
+           "phi_r_reached": float(reached[-1][1]) if reached else float("nan"),
+           "wall_s": wall, "command": cmd}
+    write_json(folder / RUN, run)
+    return run
+
+
+def run_point(cfg, phi_b, phi_r, seed):
+    """Run one point (unless its run ended cleanly before) and classify it (unless done);
+    returns its result dict and whether the deck was run."""
+    state, record = point_state(cfg, phi_b, phi_r, seed)
+    if state == "done":
+        return record, False
+    folder = run_dir(cfg, phi_b, phi_r, seed)
+    ran = state == "todo"
+    run = simulate(cfg, phi_b, phi_r, seed) if ran else record
     phase, counts, obs, n = classify_run(cfg, _dump_of(cfg, folder))
     result = {"phi_b": phi_b, "phi_r": phi_r, "seed": seed, "phase": phase, "phase_counts": counts,
-              "frames": n, "phi_b_reached": float(reached[-1][0]) if reached else float("nan"),
-              "phi_r_reached": float(reached[-1][1]) if reached else float("nan"),
-              "wall_s": wall, "command": cmd, "observables": obs}
-    tmp = folder / (RESULT + ".tmp")
-    tmp.write_text(json.dumps(result, indent=1))
-    tmp.replace(done)                 # the marker appears complete or not at all
-    return result, True
+              "frames": n, "phi_b_reached": run["phi_b_reached"], "phi_r_reached": run["phi_r_reached"],
+              "wall_s": run["wall_s"], "command": run["command"], "observables": obs}
+    write_json(folder / RESULT, result)     # the point is done
+    return result, ran
 
 
 def _clock(seconds):
@@ -224,28 +346,62 @@ def phase_diagram(results, path, title=None):
     return plotting.phase_diagram(majority(results), path, title)
 
 
-def run_sweep(cfg, log=sys.stderr):
+def _lock(folder):
+    """Hold ``folder/.sweep.lock`` (released when this process ends, however it ends);
+    ValueError when another sweep holds it."""
+    f = open(folder / LOCK, "a+")
+    try:
+        fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        f.seek(0)
+        holder = f.read().strip()
+        f.close()
+        raise ValueError(f"--out {folder}: another sweep{f' (pid {holder})' if holder else ''} is running "
+                         "in it; wait for it to end or give another --out") from None
+    f.seek(0)
+    f.truncate()
+    f.write(f"{os.getpid()}\n")
+    f.flush()
+    return f
+
+
+def run_sweep(cfg, log=None):
     """Run (or resume) the sweep; returns the results in grid order and the number of runs
     made by this call. The time left is the mean wall time of the finished runs (from earlier
-    calls too) times the runs still to make."""
+    calls too) times the runs still to make. Progress goes to ``log`` (default stderr)."""
+    log = sys.stderr if log is None else log
     cfg.check()
     cfg.out.mkdir(parents=True, exist_ok=True)
+    with _lock(cfg.out):
+        return _run_sweep(cfg, log)
+
+
+def _run_sweep(cfg, log):
     todo = points(cfg)
-    results = {p: json.loads((run_dir(cfg, *p) / RESULT).read_text()) for p in todo
-               if (run_dir(cfg, *p) / RESULT).is_file()}
+    states = {p: point_state(cfg, *p) for p in todo}
+    results = {p: record for p, (state, record) in states.items() if state == "done"}
     pending = [p for p in todo if p not in results]
     walls = [r["wall_s"] for r in results.values()]
     if results:
         log.write(f"{len(results)} of {len(todo)} runs already done in {cfg.out}\n")
+    again = sum(states[p][0] == "ran" for p in pending)
+    if again:
+        log.write(f"{again} finished run(s) to classify again (their result is missing)\n")
     start = time.monotonic()
-    for k, p in enumerate(pending):
-        log.write("\r" + progress_line(k, len(pending), walls, time.monotonic() - start)
-                  + f"  now phi_b {p[0]} phi_r {p[1]} seed {p[2]} ")
-        log.flush()
-        results[p], _ = run_point(cfg, *p)
-        walls.append(results[p]["wall_s"])
+    ran = 0
+    try:
+        for k, p in enumerate(pending):
+            log.write("\r" + progress_line(k, len(pending), walls, time.monotonic() - start)
+                      + f"  now phi_b {p[0]} phi_r {p[1]} seed {p[2]} ")
+            log.flush()
+            results[p], made = run_point(cfg, *p)
+            ran += made
+            walls.append(results[p]["wall_s"])
+    except BaseException:
+        log.write("\n")                   # an error goes on a line of its own
+        raise
     log.write("\r" + progress_line(len(pending), len(pending), walls, time.monotonic() - start) + " " * 40 + "\n")
     ordered = [results[p] for p in todo]
     write_table(ordered, cfg.out)
     phase_diagram(ordered, cfg.out / "phase_diagram.png", title=cfg.deck.name)
-    return ordered, len(pending)
+    return ordered, ran

@@ -1,6 +1,7 @@
 """python3 -m activegrain sweep on a tiny grid of a tiny channel deck: it runs every point (one
 of them on 2 MPI ranks), classifies it, writes the table and the phase diagram, resumes without
-running finished points, reruns a point whose result is gone, and refuses bad arguments."""
+running finished points, classifies again a finished run whose result is gone, reruns a point
+whose run was killed with SIGKILL mid-run, and refuses bad arguments."""
 import csv
 import json
 import os
@@ -61,11 +62,70 @@ def test_sweep_resumes_without_running_finished_points(first):
     assert again.returncode == 0, again.stderr
     assert "0 run(s) made, 2 already done" in again.stdout
     assert marker.stat().st_mtime_ns == before
-    # a point whose result is gone (an interrupted run) is made again, on its own
-    (out / "phi_b0.6000_phi_r0.0600_seed3" / "result.json").unlink()
+    # a finished run whose result is gone (classifying it was cut short) is classified again, not run
+    point = out / "phi_b0.6000_phi_r0.0600_seed3"
+    log = (point / "log.lammps").stat().st_mtime_ns
+    (point / "result.json").unlink()
     third = sweep(out)
     assert third.returncode == 0, third.stderr
-    assert "1 run(s) made, 1 already done" in third.stdout
+    assert "0 run(s) made, 2 already done" in third.stdout and "1 finished run(s) to classify again" in third.stderr
+    assert (point / "result.json").is_file() and (point / "log.lammps").stat().st_mtime_ns == log
+    # a point whose run did not end cleanly (no run.json) is made again, on its own
+    (point / "result.json").unlink()
+    (point / "run.json").unlink()
+    fourth = sweep(out)
+    assert fourth.returncode == 0, fourth.stderr
+    assert "1 run(s) made, 1 already done" in fourth.stdout
+    assert marker.stat().st_mtime_ns == before
+
+
+# Stands in for lmp: runs it, but the point phi_b 0.7 for 100 times the time, and a watcher kills
+# it (the lmp process itself, SIGKILL) once its dump holds two frames: mid-run.
+KILLING_LMP = """#!{python}
+import glob, os, signal, sys, time
+args = sys.argv[1:]
+var = {{args[i + 1]: args[i + 2] for i, a in enumerate(args) if a == "-var"}}
+if var["phi_b"] == "0.7":
+    args[args.index("time") + 1] = repr(100 * float(var["time"]))
+    lmp_pid = os.getpid()
+    if os.fork() == 0:
+        stop = time.monotonic() + 300
+        while time.monotonic() < stop:
+            dumps = glob.glob(os.path.join(var["out"], "*.dump"))
+            if dumps and open(dumps[0]).read().count("ITEM: TIMESTEP") >= 2:
+                with open(os.environ["KILLED_LOG"], "w") as f:
+                    f.write(str(lmp_pid))
+                os.kill(lmp_pid, signal.SIGKILL)
+                break
+            time.sleep(0.02)
+        os._exit(0)
+os.execv({lmp!r}, [{lmp!r}, *args])
+"""
+
+
+def test_a_point_killed_mid_run_is_rerun_and_finished_points_are_kept(tmp_path, monkeypatch):
+    out = tmp_path / "killed"
+    killing = tmp_path / "lmp"
+    killing.write_text(KILLING_LMP.format(python=sys.executable, lmp=str(pathlib.Path(LMP).resolve())))
+    killing.chmod(0o755)
+    monkeypatch.setenv("KILLED_LOG", str(tmp_path / "killed.pid"))
+    done = sweep(out, "--lmp", str(killing))
+    assert (tmp_path / "killed.pid").is_file(), done.stderr        # it was killed, not finished
+    assert done.returncode == 1
+    errors = [l for l in done.stderr.splitlines() if "ERROR" in l]
+    assert errors and errors[0].startswith("ERROR: activegrain sweep: run phi_b0.7000_phi_r0.0600_seed3 failed "
+                                           "(killed by SIGKILL)"), done.stderr
+    finished, killed = out / "phi_b0.6000_phi_r0.0600_seed3", out / "phi_b0.7000_phi_r0.0600_seed3"
+    assert (finished / "result.json").is_file()
+    assert not (killed / "result.json").exists() and not (killed / "run.json").exists()
+    assert list(killed.glob("*.dump")), "the killed run wrote no frame"
+    before = (finished / "result.json").stat().st_mtime_ns
+    again = sweep(out)                                              # the plain lmp
+    assert again.returncode == 0, again.stderr
+    assert "1 run(s) made, 1 already done" in again.stdout
+    assert (finished / "result.json").stat().st_mtime_ns == before
+    rows = list(csv.DictReader(open(out / "phases.csv")))
+    assert [r["phi_b"] for r in rows] == ["0.6", "0.7"] and all(int(r["frames"]) == 3 for r in rows)
 
 
 @pytest.mark.parametrize("extra, message", [
