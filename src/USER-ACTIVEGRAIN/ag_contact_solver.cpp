@@ -44,19 +44,13 @@ int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const 
   return num_contacts() - 1;
 }
 
-void ContactSolver::apply(const Contact &c, const Vec3 &J)
-{
-  bodies[c.body1].apply_impulse_at_arm(-J, c.r1);
-  bodies[c.body2].apply_impulse_at_arm(J, c.r2);
-}
-
 // Matrices and targets from the pre-solve velocities; which contacts share a movable body.
 void ContactSolver::prepare()
 {
   contacts_of_body.assign(bodies.size(), 0);
   for (Contact &c : contacts) {
     c.K = contact_matrix(bodies[c.body1], c.r1, bodies[c.body2], c.r2);
-    c.impulse = Vec3();
+    c.impulse = c.late = c.resting = Vec3();
     ++contacts_of_body[c.body1];
     ++contacts_of_body[c.body2];
   }
@@ -74,31 +68,43 @@ void ContactSolver::prepare()
 // islands do not interact within a solve.
 void ContactSolver::find_islands()
 {
+  coupled.clear();
+  for (int i = 0; i < num_contacts(); ++i)
+    if (!contacts[i].isolated) coupled.push_back(i);
+  num_islands = group_by_bodies(coupled, islands);
+}
+
+// The contacts of subset (in its order) that share movable bodies, directly or through others,
+// as groups in the order of their first contact. The groups' lists keep their storage from call
+// to call; returns how many there are.
+int ContactSolver::group_by_bodies(const std::vector<int> &subset, std::vector<std::vector<int>> &groups)
+{
   island_root.resize(bodies.size());
-  for (int b = 0; b < num_bodies(); ++b) island_root[b] = b;
+  island_of_root.resize(bodies.size());
+  for (int i : subset)
+    for (int b : {contacts[i].body1, contacts[i].body2}) island_root[b] = b, island_of_root[b] = -1;
   auto root = [&](int b) {
     while (island_root[b] != b) b = island_root[b] = island_root[island_root[b]];
     return b;
   };
-  for (const Contact &c : contacts) {
-    if (c.isolated || bodies[c.body1].is_static() || bodies[c.body2].is_static()) continue;
+  for (int i : subset) {
+    const Contact &c = contacts[i];
+    if (bodies[c.body1].is_static() || bodies[c.body2].is_static()) continue;
     const int r1 = root(c.body1), r2 = root(c.body2);
     if (r1 != r2) island_root[std::max(r1, r2)] = std::min(r1, r2);
   }
-  // The islands' lists keep their storage from solve to solve.
-  island_of_root.assign(bodies.size(), -1);
-  num_islands = 0;
-  for (int i = 0; i < num_contacts(); ++i) {
+  int count = 0;
+  for (int i : subset) {
     const Contact &c = contacts[i];
-    if (c.isolated) continue;
     const int r = root(bodies[c.body1].is_static() ? c.body2 : c.body1);
     if (island_of_root[r] < 0) {
-      island_of_root[r] = num_islands++;
-      if (islands.size() < static_cast<std::size_t>(num_islands)) islands.emplace_back();
-      islands[island_of_root[r]].clear();
+      island_of_root[r] = count++;
+      if (groups.size() < static_cast<std::size_t>(count)) groups.emplace_back();
+      groups[island_of_root[r]].clear();
     }
-    islands[island_of_root[r]].push_back(i);
+    groups[island_of_root[r]].push_back(i);
   }
+  return count;
 }
 
 // Stronge's impact of a contact alone, leaving at least at min_separation.
@@ -115,7 +121,7 @@ void ContactSolver::solve_isolated()
     if (c.isolated) {
       c.impulse = impact_alone(c, c.min_separation);
       c.late = c.impulse * c.time;
-      apply(c, c.impulse);
+      apply_impulse(bodies, c, c.impulse);
     }
 }
 
@@ -195,7 +201,7 @@ int ContactSolver::impacts_in_order(const std::vector<int> &island, const Settin
       Contact &c = contacts[wave[0]];
       const Vec3 J = impact_alone(c, 0.0);    // overlaps are opened after all impacts
       c.impulse += J;
-      apply(c, J);
+      apply_impulse(bodies, c, J);
     } else {
       const int s = compliant_impact.solve(bodies, contacts, wave, settings);
       if (s < 0) return -1;
@@ -210,6 +216,36 @@ int ContactSolver::impacts_in_order(const std::vector<int> &island, const Settin
     }
     measure_approaches(island);
   }
+  return substeps;
+}
+
+// With a resting speed: the contacts approaching faster are impacts, solved first (as islands of
+// their own: through resting contacts they do not couple), then all of the island's contacts
+// together as resting contacts (ag_resting_solve.h).
+int ContactSolver::solve_impacts_then_resting(const std::vector<int> &island, const Settings &settings,
+                                              Result &result)
+{
+  measure_approaches(island);
+  impacts.clear();
+  for (std::size_t k = 0; k < island.size(); ++k)
+    if (approach[k] > settings.resting_speed) impacts.push_back(island[k]);
+  int substeps = 0;
+  const int groups = group_by_bodies(impacts, impact_islands);
+  for (int g = 0; g < groups && substeps >= 0; ++g) {
+    const std::vector<int> &group = impact_islands[g];
+    if (group.size() == 1) {    // Stronge's law, exactly (its overlap is opened below)
+      Contact &c = contacts[group[0]];
+      c.impulse = impact_alone(c, 0.0);
+      c.late = c.impulse * c.time;
+      apply_impulse(bodies, c, c.impulse);
+      continue;
+    }
+    const int s = solve_island(group, settings);
+    substeps = s < 0 ? -1 : std::max(substeps, s);
+  }
+  const int sweeps = resting_solve.solve(bodies, contacts, island, settings);
+  result.resting_sweeps = std::max(result.resting_sweeps, sweeps < 0 ? settings.max_resting_sweeps : sweeps);
+  result.resting_converged = result.resting_converged && sweeps >= 0;
   return substeps;
 }
 
@@ -255,10 +291,12 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
   solve_isolated();
   compliant_impact.resize(bodies.size());
   overlap_step.resize(bodies.size());
+  resting_solve.resize(bodies.size());
   Result result;
   for (int k = 0; k < num_islands; ++k) {
     const std::vector<int> &island = islands[k];
-    const int substeps = solve_island(island, settings);
+    const int substeps = settings.resting_speed > 0.0 ? solve_impacts_then_resting(island, settings, result)
+                                                      : solve_island(island, settings);
     const double shortfall = separate_overlaps(island, settings);
     result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);
     result.shortfall = std::max(result.shortfall, shortfall);

@@ -25,6 +25,7 @@
 #include "ag_compliant_impact.h"
 #include "ag_impulse.h"
 #include "ag_jacobi_step.h"
+#include "ag_resting_solve.h"
 #include "ag_solver_contact.h"
 #include "ag_solver_settings.h"
 
@@ -41,6 +42,8 @@ class ContactSolver {
     double shortfall = 0.0;   // largest separation velocity still missing at an overlap,
                               // relative to its minimum separation velocity
     bool converged = true;    // every impact ended within max_substeps
+    int resting_sweeps = 0;            // most sweeps an island's resting solve needed
+    bool resting_converged = true;     // every resting solve converged within max_resting_sweeps
   };
 
   void clear();
@@ -64,18 +67,23 @@ class ContactSolver {
   const RigidBodyState &body(int i) const { return bodies[i]; }
   const Contact &contact(int c) const { return contacts[c]; }
   const Vec3 &impulse(int c) const { return contacts[c].impulse; }
+  // A contact's resting impulse: the last step's, to start from (set after add_contact), and
+  // this solve's.
+  void set_warm(int c, const Vec3 &J) { contacts[c].warm = J; }
+  const Vec3 &resting(int c) const { return contacts[c].resting; }
 
  private:
   // The stages of solve().
   void prepare();
   void solve_isolated();
   void find_islands();
+  int group_by_bodies(const std::vector<int> &subset, std::vector<std::vector<int>> &groups);
   int solve_island(const std::vector<int> &island, const Settings &settings);    // -1: capped
   int impacts_in_order(const std::vector<int> &island, const Settings &settings);    // -1: capped
+  int solve_impacts_then_resting(const std::vector<int> &island, const Settings &settings, Result &result);
   double separate_overlaps(const std::vector<int> &island, const Settings &settings);    // the shortfall left
 
   Vec3 impact_alone(const Contact &c, double min_separation) const;
-  void apply(const Contact &c, const Vec3 &J);
   void measure_approaches(const std::vector<int> &island);
   double closing_time(const Contact &c, double approach_speed, const Settings &settings) const;
 
@@ -86,6 +94,10 @@ class ContactSolver {
   std::vector<int> island_root;             // per body (union-find)
   std::vector<int> island_of_root;          // per root body: its island, -1 before it has one
   std::vector<int> contacts_of_body;        // per body: its contacts (isolated ones: 1)
+  std::vector<int> coupled;                 // the contacts that are not isolated
+  std::vector<int> impacts;                 // an island's contacts that are not resting
+  std::vector<std::vector<int>> impact_islands;    // ... grouped by the bodies they share
+  RestingSolve resting_solve;
   CompliantImpact compliant_impact;
   JacobiStep overlap_step;                  // the overlap correction's
   // Scratch of the impacts in order, per island contact:

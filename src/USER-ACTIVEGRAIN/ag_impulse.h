@@ -55,8 +55,13 @@ class TangentialStep {
   // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
   // against the slip (the current one, plus what dp drives within the step).
   Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
+  // Tangential impulse that stops the slip of u with no normal impulse (a resting contact's
+  // friction, bounded by its accumulated normal impulse: ag_resting_solve.h).
+  Vec3 stopping(const Vec3 &u) const { return stick(u, 0.0); }
 
  private:
+  Vec3 stick(const Vec3 &u, double dp) const;    // the tangential impulse that stops the slip
+
   Vec3 tangent1, tangent2;    // the contact frame's tangents
   // The inverse of K on the tangent plane (symmetric) and the tangential components of K n.
   double inv11 = 0, inv12 = 0, inv22 = 0, kn1 = 0, kn2 = 0;

@@ -19,11 +19,13 @@ struct SolverContact {
   // relative velocity at that moment.
   Vec3 gain;
   double time = 0.0;              // when within the step it closes (0: touching at the start)
+  Vec3 warm;                      // its resting impulse in the last step (ag_resting_solve.h)
   // Filled by the solve:
   Mat3 K;
   bool isolated = false;          // the only contact of both its (movable) bodies
   Vec3 impulse;                   // on body 2 (minus on body 1)
   Vec3 late;                      // the sum of impulse times when in the step it acted
+  Vec3 resting;                   // the part of impulse the resting solve gave
   // Of a contact that shares a body (not isolated): n.K.n, and its friction's tangential step.
   double knn = 0.0;
   TangentialStep tangential;
@@ -33,6 +35,13 @@ struct SolverContact {
 inline Vec3 relative_velocity(const std::vector<RigidBodyState> &bodies, const SolverContact &c)
 {
   return bodies[c.body2].velocity_at_arm(c.r2) - bodies[c.body1].velocity_at_arm(c.r1) + c.gain;
+}
+
+// Impulse J on body 2 and -J on body 1 at the contact.
+inline void apply_impulse(std::vector<RigidBodyState> &bodies, const SolverContact &c, const Vec3 &J)
+{
+  bodies[c.body1].apply_impulse_at_arm(-J, c.r1);
+  bodies[c.body2].apply_impulse_at_arm(J, c.r2);
 }
 
 }    // namespace ActiveGrain

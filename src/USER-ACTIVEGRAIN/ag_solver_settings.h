@@ -30,6 +30,14 @@ struct SolverSettings {
   // a fraction of an overlap anyway. Smaller or more: overlaps open more exactly, at more cost.
   double overlap_tolerance = 1.0e-2;
   int max_overlap_sweeps = 100;
+  // Island contacts approaching no faster than this are resting (ag_resting_solve.h): solved
+  // together, after the impacts of the others. 0: every contact is an impact. The caller sets it
+  // from the velocity gravity and the plates give within a step.
+  double resting_speed = 0.0;
+  // The resting solve's sweeps stop once none changes a contact's velocity by more than this
+  // fraction of resting_speed, or after max_resting_sweeps.
+  double resting_tolerance = 1.0e-3;
+  int max_resting_sweeps = 1000;
 };
 
 }    // namespace ActiveGrain

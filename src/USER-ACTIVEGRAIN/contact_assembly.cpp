@@ -47,6 +47,7 @@ void ContactAssembly::scan_atoms(const double *maxrad)
 void ContactAssembly::assemble(NeighList *list)
 {
   atom_contacts.clear();
+  identities.clear();
   found.clear();
   gather_pair_contacts(list);
   gather_wall_contacts();
@@ -153,10 +154,28 @@ void ContactAssembly::add_found_contacts()
   else std::sort(sort_keys.begin(), sort_keys.end(), ascending);
   for (const SortKey &key : sort_keys) {
     const FoundContact &c = found[key.index];
-    solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material, c.prediction.min_separation,
-                            c.prediction.gain, c.prediction.time_to_contact);
+    const int k = solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material,
+                                          c.prediction.min_separation, c.prediction.gain,
+                                          c.prediction.time_to_contact);
     atom_contacts.push_back(c.atoms);
+    identities.push_back(c.identity);
+    if (resting_impulses.empty()) continue;
+    const auto last = resting_impulses.find(c.identity);
+    if (last != resting_impulses.end()) solver.set_warm(k, last->second);
   }
+}
+
+void ContactAssembly::remember_resting()
+{
+  resting_impulses.clear();
+  for (int c = 0; c < solver.num_contacts(); ++c)
+    if (norm2(solver.resting(c)) > 0.0) resting_impulses.emplace(identities[c], solver.resting(c));
+}
+
+std::size_t ContactAssembly::IdentityHash::operator()(const ContactIdentity &id) const
+{
+  return ActiveGrain::hash_words({static_cast<std::uint64_t>(std::get<0>(id) + 1), static_cast<std::uint64_t>(std::get<1>(id)),
+                                  static_cast<std::uint64_t>(std::get<2>(id)), static_cast<std::uint64_t>(std::get<3>(id))});
 }
 
 double ContactAssembly::memory_usage() const

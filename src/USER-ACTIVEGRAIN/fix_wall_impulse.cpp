@@ -214,8 +214,13 @@ double FixWallImpulse::base_vz(double t) const
 
 double FixWallImpulse::base_az(double t) const
 {
+  return -peak_acceleration() * std::sin(2.0 * PI * frequency * t + phase);
+}
+
+double FixWallImpulse::peak_acceleration() const
+{
   const double omega = 2.0 * PI * frequency;
-  return -omega * omega * amplitude * std::sin(omega * t + phase);
+  return omega * omega * amplitude;
 }
 
 void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &atoms,

@@ -29,6 +29,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
 
   void find_wall_contacts(double reach, const std::vector<char> &atoms,
                           const std::vector<double> &spin_speed, std::vector<Contact> &contacts) override;
+  double peak_acceleration() const override;
 
  private:
   enum Surface { BASE = 0, LID, NUM_SURFACES };

@@ -49,6 +49,9 @@ class ImpulseWall {
   // Largest speed of the wall at the atoms it looked at in this force computation (for the
   // pair style's skin warning: a wall closes gaps at its own speed).
   double wall_speed() const { return max_wall_speed; }
+  // Largest acceleration of the wall (a vibrating plate's amplitude times its angular frequency
+  // squared): with gravity, what sets the speed below which contacts rest (pair_gran_impulse.rst).
+  virtual double peak_acceleration() const { return 0.0; }
 
   // Global outputs of the wall fixes (compute_vector), one layout for both: first the fix's own
   // state (fix wall/impulse: base z, lid z, plate velocity; fix wall/impulse/region: none), then

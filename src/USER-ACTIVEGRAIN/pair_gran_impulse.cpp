@@ -34,10 +34,10 @@ static constexpr double DEFAULT_BETA = 0.2;
 static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution).
-static constexpr int RESTART_FORMAT = -2;
+static constexpr int RESTART_FORMAT = -3;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), beta(DEFAULT_BETA), order(ContactOrder::SHUFFLE), restitution(nullptr), friction(nullptr),
+    Pair(lmp), beta(DEFAULT_BETA), order(ContactOrder::SHUFFLE), resting(0.0), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), ghost_pairs(false), ranks(lmp), near(lmp), bodies(lmp, solver, ranks),
     assembly(lmp, solver, bodies, ranks, near), delivery(lmp), carry(lmp), diagnostics(lmp, STYLE)
 {
@@ -80,13 +80,14 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step];
+/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step] [resting yes|no|V];
    every setting not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
   solver_settings = ActiveGrain::ContactSolver::Settings();
   beta = DEFAULT_BETA;
   order = ContactOrder::SHUFFLE;
+  resting = 0.0;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     const std::string key = arg[iarg];
     if (key == "coupled" || key == "sweeps" || key == "tolerance")
@@ -110,6 +111,11 @@ void PairGranImpulse::settings(int narg, char **arg)
       else if (value == "tag") order = ContactOrder::TAG;
       else if (value == "reverse") order = ContactOrder::REVERSE;
       else error->all(FLERR, "{}: order must be shuffle, tag or reverse (found {})", STYLE, value);
+    } else if (key == "resting") {
+      if (value == "yes" || value == "no") resting = value == "yes" ? AUTO_RESTING : 0.0;
+      else resting = utils::numeric(FLERR, value, false, lmp);
+      if (!(resting >= 0.0 || resting == AUTO_RESTING))
+        error->all(FLERR, "{}: resting must be yes, no or a speed >= 0 (found {})", STYLE, value);
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
@@ -287,9 +293,20 @@ void PairGranImpulse::assemble()
 void PairGranImpulse::solve()
 {
   solver_settings.step = update->dt;
+  solver_settings.resting_speed =
+      resting == AUTO_RESTING ? solver_settings.resting_gain * update->dt * largest_acceleration() : resting;
   const ActiveGrain::ContactSolver::Result result = solver.solve(solver_settings);
+  if (resting != 0.0) assembly.remember_resting();
   report(diagnostics.record(result, assembly.extremes(), largest_type_radius(), solver_settings.max_substeps),
          diagnostics.tally_energy(solver, assembly));
+}
+
+// What sets the speed below which contacts rest: gravity, the walls' vibration.
+double PairGranImpulse::largest_acceleration() const
+{
+  double largest = bodies.largest_gravity();
+  for (const ImpulseWall *wall : walls) largest = std::max(largest, wall->peak_acceleration());
+  return largest;
 }
 
 void PairGranImpulse::deliver()
@@ -317,6 +334,7 @@ void PairGranImpulse::report(const SolveDiagnostics::Health &health, const Solve
   pvector[DISSIPATED_WALL] = energies.dissipated_wall;
   pvector[OVERLAP_WORK] = energies.overlap_work;
   pvector[WALL_WORK] = energies.wall_work;
+  pvector[RESTING_SWEEPS] = here * health.resting_sweeps;
 }
 
 int PairGranImpulse::pack_reverse_comm(int n, int first, double *buf)
@@ -363,7 +381,7 @@ void PairGranImpulse::read_restart(FILE *fp)
 }
 
 // Settings in restart files: a negative format number first (files of the first format begin with
-// the resolution, which is positive), then resolution, beta, order and the window.
+// the resolution, which is positive), then resolution, beta, order, the window and resting.
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
   const int order_code = static_cast<int>(order);
@@ -372,11 +390,13 @@ void PairGranImpulse::write_restart_settings(FILE *fp)
   fwrite(&beta, sizeof(double), 1, fp);
   fwrite(&order_code, sizeof(int), 1, fp);
   fwrite(&solver_settings.window, sizeof(double), 1, fp);
+  fwrite(&resting, sizeof(double), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
 {
   int order_code = 0;
+  resting = 0.0;
   solver_settings = ActiveGrain::ContactSolver::Settings();
   if (comm->me == 0) {
     int format = 0;
@@ -387,12 +407,15 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
     if (format < 0) utils::sfread(FLERR, &solver_settings.window, sizeof(double), 1, fp, nullptr, error);
+    if (format < -2) utils::sfread(FLERR, &resting, sizeof(double), 1, fp, nullptr, error);
   }
   MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
   MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
   order = static_cast<ContactOrder>(order_code);
+
 }
 
 void *PairGranImpulse::extract(const char *name, int &dim)

@@ -62,6 +62,7 @@ class PairGranImpulse : public Pair {
     DISSIPATED_WALL,    // dissipated at wall contacts
     OVERLAP_WORK,       // added by the overlap correction (pushes apart of overlapping contacts)
     WALL_WORK,          // work of the walls on the particles, sum of J . v_wall
+    RESTING_SWEEPS,     // most sweeps a resting solve needed in the last step (keyword resting)
     NUM_OUTPUTS
   };
 
@@ -77,11 +78,16 @@ class PairGranImpulse : public Pair {
   void deliver();
   void report(const SolveDiagnostics::Health &health, const SolveDiagnostics::Energies &energies);
   double largest_type_radius() const;
+  double largest_acceleration() const;
 
   // settings
   ActiveGrain::ContactSolver::Settings solver_settings;
   double beta;    // overlaps leave at >= beta * overlap / dt
   ContactOrder order;
+  // Resting contacts solved together (ag_resting_solve.h) below this speed; AUTO_RESTING: from
+  // gravity and the walls' vibration; 0: none.
+  double resting;
+  static constexpr double AUTO_RESTING = -1.0;
 
   double **restitution, **friction;
   double *maxrad;    // largest radius per type, present or to be inserted (neighbor cutoff)

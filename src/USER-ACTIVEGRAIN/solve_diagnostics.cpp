@@ -32,17 +32,17 @@ const SolveDiagnostics::Health &SolveDiagnostics::record(const ActiveGrain::Cont
                                                          double largest_radius, int max_substeps)
 {
   largest_overlap = std::max(largest_overlap, extremes.overlap);
-  enum Reduced { SUBSTEPS, SHORTFALL, OVERLAP, CAPPED, FASTEST, WALL_SPEED, RADIUS, NUM_REDUCED };
+  enum Reduced { SUBSTEPS, SHORTFALL, OVERLAP, CAPPED, FASTEST, WALL_SPEED, RADIUS, RESTING_SWEEPS, NUM_REDUCED };
   double mine[NUM_REDUCED] = {(double) result.substeps, result.shortfall, largest_overlap,
                               result.converged ? 0.0 : 1.0, extremes.fastest, extremes.wall_speed,
-                              extremes.radius_excess};
+                              extremes.radius_excess, (double) result.resting_sweeps};
   double all[NUM_REDUCED];
   if (comm->nprocs > 1) MPI_Allreduce(mine, all, NUM_REDUCED, MPI_DOUBLE, MPI_MAX, world);
   else std::copy(mine, mine + NUM_REDUCED, all);
   if (all[CAPPED] > 0.0) capped_steps++;
   check_radius(all[RADIUS], largest_radius);
   check_skin(all[FASTEST], all[WALL_SPEED]);
-  health = {all[SUBSTEPS], all[SHORTFALL], all[OVERLAP], (double) capped_steps};
+  health = {all[SUBSTEPS], all[SHORTFALL], all[OVERLAP], (double) capped_steps, all[RESTING_SWEEPS]};
   warn_capped(max_substeps);
   return health;
 }

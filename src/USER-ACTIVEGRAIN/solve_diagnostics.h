@@ -15,7 +15,7 @@ class SolveDiagnostics : protected Pointers {
   // Maxima over all ranks: of the last step (substeps, shortfall), since the run's setup
   // (largest overlap, steps in which an impact hit the sub-step cap).
   struct Health {
-    double substeps = 0.0, shortfall = 0.0, largest_overlap = 0.0, capped_steps = 0.0;
+    double substeps = 0.0, shortfall = 0.0, largest_overlap = 0.0, capped_steps = 0.0, resting_sweeps = 0.0;
   };
   // This rank's contacts of the last step (energy units).
   struct Energies {

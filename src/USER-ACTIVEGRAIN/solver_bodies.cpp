@@ -7,6 +7,8 @@
 #include "force.h"
 #include "rigid_body_provider.h"
 
+#include <algorithm>
+
 using namespace LAMMPS_NS;
 using ActiveGrain::Mat3;
 using ActiveGrain::RigidBodyState;
@@ -80,6 +82,13 @@ Vec3 SolverBodies::atom_velocity_at(int i, const Vec3 &point) const
 }
 
 // None for an atom held by fix freeze.
+double SolverBodies::largest_gravity() const
+{
+  double largest = 0.0;
+  for (const auto &g : gravity_now) largest = std::max(largest, ActiveGrain::norm(g.second));
+  return largest;
+}
+
 Vec3 SolverBodies::gravity_of_atom(int i) const
 {
   Vec3 a;

@@ -36,6 +36,7 @@ class SolverBodies : protected Pointers {
   ActiveGrain::Vec3 atom_velocity_at(int i, const ActiveGrain::Vec3 &point) const;
   // Atom i's acceleration from fix gravity (velocity units per time).
   ActiveGrain::Vec3 gravity_of_atom(int i) const;
+  double largest_gravity() const;    // of this step's fix gravity accelerations
   bool frozen(int i) const;
   // Owned atom i's rigid body takes the late impulse (true), or the atom is in none.
   bool add_late_impulse(int i, const ActiveGrain::Vec3 &late, const ActiveGrain::Vec3 &late_angular) const;

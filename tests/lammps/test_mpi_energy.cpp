@@ -45,16 +45,20 @@ class DensePackingEnergy : public BeadMonolayer {
     return all + rods->extract_ke() + rods->extract_erotational();
   }
 
-  Result run(double beta)
+  // resting: pair gran/impulse's keyword; denser: a bead fraction of 0.78 and rods of 0.04 in a
+  // smaller box.
+  Result run(double beta, const std::string &resting = "no", bool denser = false, int steps = STEPS)
   {
-    command("atom_modify map array\n"
+    command(std::string(denser ? "variable phi_b index 0.78\nvariable phi_r index 0.04\n"
+                                 "variable Lx index 16e-3\nvariable Ly index 16e-3\n" : "") +
+            "atom_modify map array\n"
             "variable geometry index box\nvariable Lx index 24e-3\nvariable Ly index 24e-3\n"
             "variable phi_b index 0.55\nvariable phi_r index 0.10\nvariable amplitude index 0\n"
             "variable seed index 11\nvariable out index test_mpi_energy_out\n"
             "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
             "include ${create_dir}/in.create\n"
             "unfix gravity\n"
-            "pair_style gran/impulse beta " + std::to_string(beta) +
+            "pair_style gran/impulse beta " + std::to_string(beta) + " resting " + resting +
             "\npair_coeff * * 0.3 0.05\n"
             // Speeds of a few cm/s: rods run into rods and beads.
             "velocity all create 3e14 4928 dist gaussian\n"
@@ -63,7 +67,7 @@ class DensePackingEnergy : public BeadMonolayer {
     double previous = kinetic_energy();
     r.kinetic_lost = previous;
     using LAMMPS_NS::PairGranImpulse;
-    for (int step = 0; step < STEPS; ++step) {
+    for (int step = 0; step < steps; ++step) {
       command("run 1 pre no post no");
       r.accounted += solver_output(PairGranImpulse::DISSIPATED_PAIR) + solver_output(PairGranImpulse::DISSIPATED_WALL) -
           solver_output(PairGranImpulse::OVERLAP_WORK) - solver_output(PairGranImpulse::WALL_WORK);
@@ -107,4 +111,17 @@ TEST_F(DensePackingEnergy, OverlapCorrectionAddsAtMostItsMinimumSeparationEnergy
   const double push = beta * r.largest_overlap / DT;
   EXPECT_LE(r.largest_rise, 0.5 * r.mass * push * push + 1e-9 * r.largest_fall);
   EXPECT_NEAR(r.accounted, r.kinetic_lost, 1e-3 * r.kinetic_lost);
+}
+
+TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithRestingContactsSolvedTogether)
+{
+  // A denser packing (100-200 contacts a step, 30-45 sweeps); contacts approaching slower than
+  // 5 mm/s (a tenth of the packing's speeds) solved together. The ledger matches the kinetic
+  // energy lost exactly on 1 rank; on 2 and 4 ranks this packing leaves a gap of up to 0.7%, with
+  // or without the resting solve (not yet explained).
+  const Result r = run(0.0, "5e-3", true, 200);
+  report("beta 0, resting 5e-3", r);
+  ASSERT_GT(r.largest_fall, 0.0);
+  EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall);
+  EXPECT_NEAR(r.accounted, r.kinetic_lost, 2e-2 * r.kinetic_lost);
 }

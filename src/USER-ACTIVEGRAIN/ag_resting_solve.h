@@ -1,0 +1,61 @@
+// The resting contacts of an island (ag_contact_solver.h) solved together. No LAMMPS in here.
+//
+// A contact that approaches no faster than the velocity gravity or the plates give a body within
+// a step (SolverSettings::resting_speed) is resting: whether it would bounce at e times that
+// approach is below what the step resolves. The island's contacts are then one velocity-level
+// complementarity problem, as Moreau-Jean time stepping poses it: after the step every contact
+// separates at least at its target (0, or an overlap's minimum separation velocity) or carries a
+// normal impulse >= 0 that makes it do exactly that, and its tangential impulse stops its slip
+// within the Coulomb disc mu P_n, else lies on the disc's edge. It is solved by projected Jacobi
+// sweeps on accumulated impulses (every contact from the same state, so that the order of the
+// contacts does not enter; each takes its share of its bodies' contacts), warm-started from
+// the impulses the same contacts carried in the last step (SolverContact::warm): an island at
+// rest needs a few sweeps, whatever its size, instead of a compression wave's many sub-steps.
+// Sweeps stop once no impulse changes a contact's velocity by more than
+// SolverSettings::resting_tolerance of the resting speed.
+#pragma once
+
+#include "ag_jacobi_step.h"
+#include "ag_solver_contact.h"
+#include "ag_solver_settings.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace ActiveGrain {
+
+class RestingSolve {
+ public:
+  void resize(std::size_t num_bodies);    // before a solve of num_bodies bodies
+  // The island's contacts (indices into contacts): adds their resting impulses to the contacts'
+  // impulse and resting and updates the bodies' velocities. Returns the sweeps it took, -1 if it
+  // stopped at settings.max_resting_sweeps.
+  int solve(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
+            const std::vector<int> &island, const SolverSettings &settings);
+
+ private:
+  // The stages of solve().
+  void prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
+               const std::vector<int> &island);
+  void warm_start();
+  double sweep(double momentum);    // the largest velocity change a contact asked for
+  void settle();
+  void store();
+  void move();    // the step's impulses into the contacts and bodies
+
+  JacobiStep jacobi;
+  // The island (prepare()): its bodies' and contacts' lists, and its contacts in them.
+  std::vector<RigidBodyState> *solver_bodies = nullptr;
+  std::vector<SolverContact> *solver_contacts = nullptr;
+  const std::vector<int> *island_contacts = nullptr;
+  // Per island contact: its accumulated normal and tangential impulse as pushed (with momentum)
+  // and as last answered, 1 / n.K.n, and 1 / the contacts it shares a body with.
+  std::vector<double> normal, answer_normal;
+  std::vector<Vec3> tangential, answer_tangential;
+  std::vector<double> normal_mass, share;
+
+  std::size_t size() const { return island_contacts->size(); }
+  SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }
+};
+
+}    // namespace ActiveGrain

@@ -1,0 +1,78 @@
+// Resting contacts solved together (pair_style gran/impulse resting yes) in a dense packing of
+// rods and beads between the vibrating rough plates of the paper's decks (bead fraction 0.78,
+// rods 0.04): the bodies' velocities do not depend on the order in which contacts are handed to
+// the solver (tag, reverse, shuffle), and every resting solve converges within its sweep cap
+// (tests/core/test_resting_solve.cpp checks single solves).
+#include "lammps_fixture.h"
+
+#include "atom.h"
+#include "pair_gran_impulse.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace {
+constexpr int STEPS = 200;
+}    // namespace
+
+class RestingContacts : public LammpsTest {
+ protected:
+  using Velocities = std::map<LAMMPS_NS::tagint, std::array<double, 3>>;
+
+  // Every atom's velocity by tag after STEPS steps; the most sweeps a step's resting solve took.
+  Velocities run(const std::string &order, double &most_sweeps)
+  {
+    command("variable geometry index box\nvariable Lx index 16e-3\nvariable Ly index 16e-3\n"
+            "variable phi_b index 0.78\nvariable phi_r index 0.04\nvariable seed index 5\n"
+            "variable resting index yes\nvariable out index test_resting_contacts_out\n"
+            "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
+            "include ${create_dir}/in.create\n"
+            // the same style again: new settings, the same coefficients
+            "pair_style gran/impulse resolution ${resolution} window ${window} resting yes order " + order +
+            "\ncompute solver all pair gran/impulse\n"
+            "variable sweeps equal c_solver[" + std::to_string(LAMMPS_NS::PairGranImpulse::RESTING_SWEEPS + 1) +
+            "]\nthermo_style custom step v_sweeps\nthermo 1\ntimestep 1e-4\nrun 0 post no");
+    most_sweeps = 0.0;
+    for (int step = 0; step < STEPS; ++step) {
+      command("run 1 pre no post no");
+      most_sweeps = std::max(most_sweeps, value("v_sweeps"));
+    }
+    Velocities v;
+    for (int i = 0; i < lmp->atom->nlocal; ++i)
+      v[lmp->atom->tag[i]] = {lmp->atom->v[i][0], lmp->atom->v[i][1], lmp->atom->v[i][2]};
+    return v;
+  }
+  void fresh_lammps()
+  {
+    LammpsTest::TearDown();
+    LammpsTest::SetUp();
+  }
+};
+
+TEST_F(RestingContacts, BodyVelocitiesDoNotDependOnContactOrder)
+{
+  double sweeps_tag = 0, sweeps_reverse = 0, sweeps_shuffle = 0;
+  const Velocities tag = run("tag", sweeps_tag);
+  fresh_lammps();
+  const Velocities reverse = run("reverse", sweeps_reverse);
+  fresh_lammps();
+  const Velocities shuffle = run("shuffle", sweeps_shuffle);
+  double largest = 0.0, fastest = 0.0;
+  for (const auto &[id, v] : tag)
+    for (int k = 0; k < 3; ++k) {
+      largest = std::max({largest, std::fabs(v[k] - reverse.at(id)[k]), std::fabs(v[k] - shuffle.at(id)[k])});
+      fastest = std::max(fastest, std::fabs(v[k]));
+    }
+  std::printf("[ measured ] %zu atoms after %d steps: largest velocity difference between orders %.3g m/s "
+              "(fastest component %.3g m/s); most sweeps of a step %g, %g, %g\n",
+              tag.size(), STEPS, largest, fastest, sweeps_tag, sweeps_reverse, sweeps_shuffle);
+  // The solve's tolerance: its resting speed (twice the plates' peak acceleration times dt) times
+  // resting_tolerance.
+  const ActiveGrain::SolverSettings settings;
+  const double omega = 2.0 * M_PI * value("v_freq");
+  const double tolerance = settings.resting_tolerance * settings.resting_gain * 1e-4 * omega * omega * value("v_amplitude");
+  const int cap = settings.max_resting_sweeps;
+  EXPECT_LT(largest, tolerance);
+  EXPECT_LT(std::max({sweeps_tag, sweeps_reverse, sweeps_shuffle}), cap);
+}
