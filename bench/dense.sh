@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Benchmark (not a test): the cost of dense packings, side by side in one call. The channel of
+# examples/channel/in.channel-small, 30 x 15 mm (Lx 30e-3), rods at phi_r 0.0414, beads from a
+# fluid to the jammed corner of the phase diagram (total area fraction 0.70 to 0.862), each
+# grown once (-var start grow, the state written with -var state) and then run for TIME
+# simulated seconds from that state (1 rank, LAMMPS's loop time), with pair gran/impulse:
+#   impacts   resting no (every contact through the compliant impacts)
+#   resting   resting yes (resting contacts solved together: docs/pair_gran_impulse.rst)
+#   base      another build's plugin, e.g. an earlier commit (BASE: its checkout with build/),
+#             on its own decks, from the same states (the fluid row only, for a build that
+#             cannot read states)
+# and the fluid reference of the issue: the same deck at its defaults (phi_b 0.75) from its own
+# created start. Prints us per atom-step and that over the fluid's (of the same side).
+#   bench/dense.sh [--quick]         --quick: a few steps per run (checks the script)
+#   BASE=../ag-base bench/dense.sh   with a baseline: git worktree add ../ag-base 8ca6466 &&
+#                                    (cd ../ag-base && bash -c 'source tools/common.sh; prepare_build')
+#   TIME (0.1) and PHI_B ("0.6586 0.7186 0.7586 0.7986 0.8203") override the defaults.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+quick=0
+for a in "$@"; do case $a in --quick) quick=1 ;; *) echo "unknown argument $a" >&2; exit 2 ;; esac; done
+time=${TIME:-0.1}; [ $quick = 1 ] && time=${TIME:-0.002}
+phis=(${PHI_B:-0.6586 0.7186 0.7586 0.7986 0.8203})
+phi_r=0.0414
+ours=$here/../build/lmp
+base=${BASE:+$(cd "$BASE" && pwd)}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+loop() {    # seconds steps atoms of the last "Loop time" line
+  awk '/^Loop time of/ {t=$4; s=$9; n=$12} END {if (t=="") exit 1; print t, s, n}' "$1"
+}
+# side lmp deck_dir log extra-args...: one timed run
+run() {
+  local side=$1 lmp=$2 dir=$3 log=$4; shift 4
+  (cd "$dir" && "$lmp" -in in.channel-small -var Lx 30e-3 -var time "$time" -var dump 1.0 \
+      -var out "$work/out-$side" -log "$log" -echo none "$@" >/dev/null 2>&1) \
+    || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
+}
+cost() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v n="$n" 'BEGIN{printf "%.4g", t/(s*n)*1e6}'; }
+mkdir -p "$work"/out-{impacts,resting,base}
+
+sides=(impacts resting); [ -n "$base" ] && sides+=(base)
+lmp_of() { case $1 in base) echo "$base/build/lmp" ;; *) echo "$ours" ;; esac; }
+dir_of() { case $1 in base) echo "$base/examples/channel" ;; *) echo "$here/../examples/channel" ;; esac; }
+args_of() { case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; base) echo "" ;; esac; }
+
+echo "# $(date -u +%F) TIME $time s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+declare -A fluid
+for side in "${sides[@]}"; do
+  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$work/fluid-$side.log" $(args_of $side)
+  fluid[$side]=$(cost "$work/fluid-$side.log")
+done
+printf '%-8s %-8s %-7s %-6s' total phi_b phi_r atoms
+for side in "${sides[@]}"; do printf ' %-12s %-10s' "$side:us" "x_fluid"; done; echo
+printf '%-8s %-8s %-7s %-6s' fluid 0.75 0.04 "$(loop "$work/fluid-impacts.log" | cut -d' ' -f3)"
+for side in "${sides[@]}"; do printf ' %-12s %-10s' "${fluid[$side]}" 1; done; echo
+for phi_b in "${phis[@]}"; do
+  # the grown state, made once with ours (the grow start always reaches phi_b)
+  (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \
+      -var phi_r $phi_r -var start grow -var out "$work/out-impacts" -var state "$work/state-$phi_b" \
+      -log "$work/grow-$phi_b.log" -echo none >/dev/null 2>&1) \
+    || { echo "grow failed: phi_b $phi_b" >&2; tail -5 "$work/grow-$phi_b.log" >&2; exit 1; }
+  state=$(ls "$work/state-$phi_b"-*s.data.gz)
+  atoms=$(zcat "$state" | awk '/ atoms$/ {print $1; exit}')
+  printf '%-8s %-8s %-7s %-6s' "$(awk -v a="$phi_b" -v b=$phi_r 'BEGIN{printf "%.3f", a+b}')" "$phi_b" $phi_r "$atoms"
+  for side in "${sides[@]}"; do
+    if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then
+      printf ' %-12s %-10s' - -; continue    # a build from before states: the fluid row only
+    fi
+    log="$work/$phi_b-$side.log"
+    run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" -var phi_b "$phi_b" -var phi_r $phi_r \
+        -var from "$state" $(args_of $side)
+    c=$(cost "$log")
+    printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.1f", a/b}')"
+  done
+  echo
+done
