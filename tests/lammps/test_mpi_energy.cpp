@@ -119,7 +119,7 @@ TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithRestingContactsSolvedTog
   // 5 mm/s (a tenth of the packing's speeds) solved together. The ledger matches the kinetic
   // energy lost exactly on 1 rank; on 2 and 4 ranks this packing leaves a gap of up to 0.7%, with
   // or without the resting solve (not yet explained).
-  const Result r = run(0.0, "5e-3", true, 200);
+  const Result r = run(0.0, "5e-3", true, 100);
   report("beta 0, resting 5e-3", r);
   ASSERT_GT(r.largest_fall, 0.0);
   EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall);
