@@ -34,10 +34,10 @@ int RestingSolve::solve(std::vector<RigidBodyState> &bodies, std::vector<SolverC
   while (!done && sweeps < settings.max_resting_sweeps) {
     ++sweeps;
     const double next_time = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum_time * momentum_time));
-    const double change = sweep((momentum_time - 1.0) / next_time);
+    const double change = sweep((momentum_time - 1.0) / next_time);    // squared
     momentum_time = change > last_change ? 1.0 : next_time;
     last_change = change;
-    done = change <= converged;
+    done = change <= converged * converged;
   }
   settle();
   store();
@@ -61,8 +61,10 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   normal_mass.resize(n);
   share.resize(n);
   for (std::size_t k = 0; k < n; ++k) jacobi.count(k);
+  normal_response.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     normal_mass[k] = 1.0 / contact(k).knn;
+    normal_response[k] = contact(k).K * contact(k).n;
     share[k] = 1.0 / jacobi.share(k);
   }
 }
@@ -86,7 +88,9 @@ void RestingSolve::warm_start()
 
 // Every contact from the same state: the normal impulse that makes it leave at its target (never
 // pulling), and the friction that then stops its slip within mu times it; of that change, its
-// share, kept within the cone; then pushed on by momentum times its change in the sweep. Returns the largest velocity change a contact asked for.
+// share, kept within the cone; then pushed on by momentum times its change in the sweep. A
+// contact that stays open and carried nothing has nothing to do. Returns the square of the
+// largest velocity change a contact asked for.
 double RestingSolve::sweep(double momentum)
 {
   jacobi.start_step();
@@ -96,9 +100,11 @@ double RestingSolve::sweep(double momentum)
     const Vec3 u = relative_velocity(*solver_bodies, c);
     const double target = std::max(0.0, c.min_separation);
     const double pn = std::max(0.0, normal[k] + (target - dot(u, c.n)) * normal_mass[k]);
-    const Vec3 dn = c.n * (pn - normal[k]);
-    const Vec3 pt = within_cone(tangential[k] + c.tangential.stopping(u + c.K * dn), c.material.mu * pn);
-    largest = std::max(largest, norm(c.K * (dn + pt - tangential[k])));
+    if (pn == 0.0 && normal[k] == 0.0 && answer_normal[k] == 0.0) continue;    // open, and was
+    const double dpn = pn - normal[k];
+    const Vec3 pt = within_cone(tangential[k] + c.tangential.stopping(u + normal_response[k] * dpn), c.material.mu * pn);
+    const Vec3 dt = pt - tangential[k];
+    largest = std::max(largest, norm2(normal_response[k] * dpn + c.K * dt));
     const double part = share[k];
     const double answer_n = std::max(0.0, normal[k] + part * (pn - normal[k]));
     const Vec3 answer_t = within_cone(tangential[k] + (pt - tangential[k]) * part, c.material.mu * answer_n);

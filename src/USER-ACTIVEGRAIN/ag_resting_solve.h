@@ -38,7 +38,7 @@ class RestingSolve {
   void prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
                const std::vector<int> &island);
   void warm_start();
-  double sweep(double momentum);    // the largest velocity change a contact asked for
+  double sweep(double momentum);    // the square of the largest velocity change a contact asked for
   void settle();
   void store();
   void move();    // the step's impulses into the contacts and bodies
@@ -53,6 +53,7 @@ class RestingSolve {
   std::vector<double> normal, answer_normal;
   std::vector<Vec3> tangential, answer_tangential;
   std::vector<double> normal_mass, share;
+  std::vector<Vec3> normal_response;    // K n: the relative velocity of a unit normal impulse
 
   std::size_t size() const { return island_contacts->size(); }
   SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }
