@@ -70,6 +70,7 @@ class ContactSolver {
   // A contact's resting impulse: the last step's, to start from (set after add_contact), and
   // this solve's.
   void set_warm(int c, const Vec3 &J) { contacts[c].warm = J; }
+  void set_key(int c, std::uint64_t key) { contacts[c].key = key; }
   const Vec3 &resting(int c) const { return contacts[c].resting; }
 
  private:

@@ -6,16 +6,16 @@
 // complementarity problem, as Moreau-Jean time stepping poses it: after the step every contact
 // separates at least at its target (0, or an overlap's minimum separation velocity) or carries a
 // normal impulse >= 0 that makes it do exactly that, and its tangential impulse stops its slip
-// within the Coulomb disc mu P_n, else lies on the disc's edge. It is solved by projected Jacobi
-// sweeps on accumulated impulses (every contact from the same state, so that the order of the
-// contacts does not enter; each takes its share of its bodies' contacts), warm-started from
-// the impulses the same contacts carried in the last step (SolverContact::warm): an island at
-// rest needs a few sweeps, whatever its size, instead of a compression wave's many sub-steps.
-// Sweeps stop once no impulse changes a contact's velocity by more than
+// within the Coulomb disc mu P_n, else lies on the disc's edge. It is solved by projected
+// Gauss-Seidel sweeps on accumulated impulses (normal, over-relaxed, then friction, per contact),
+// warm-started from the impulses the same contacts carried in the last step
+// (SolverContact::warm). The contacts are coloured so that no two of a colour share a movable
+// body, in the order of their keys (SolverContact::key, their identity): a sweep visits the
+// colours in turn, and its result does not depend on the order in which the contacts came, bit
+// for bit. Sweeps stop once none changes a contact's velocity by more than
 // SolverSettings::resting_tolerance of the resting speed.
 #pragma once
 
-#include "ag_jacobi_step.h"
 #include "ag_solver_contact.h"
 #include "ag_solver_settings.h"
 
@@ -38,22 +38,19 @@ class RestingSolve {
   void prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
                const std::vector<int> &island);
   void warm_start();
-  double sweep(double momentum);    // the square of the largest velocity change a contact asked for
-  void settle();
+  double sweep();    // the square of the largest velocity change a contact asked for
   void store();
-  void move();    // the step's impulses into the contacts and bodies
 
-  JacobiStep jacobi;
   // The island (prepare()): its bodies' and contacts' lists, and its contacts in them.
   std::vector<RigidBodyState> *solver_bodies = nullptr;
   std::vector<SolverContact> *solver_contacts = nullptr;
   const std::vector<int> *island_contacts = nullptr;
-  // Per island contact: its accumulated normal and tangential impulse as pushed (with momentum)
-  // and as last answered, 1 / n.K.n, and 1 / the contacts it shares a body with.
-  std::vector<double> normal, answer_normal;
-  std::vector<Vec3> tangential, answer_tangential;
-  std::vector<double> normal_mass, share;
-  std::vector<Vec3> normal_response;    // K n: the relative velocity of a unit normal impulse
+  // Per island contact: its accumulated normal and tangential impulse, 1 / n.K.n, K n, its colour.
+  std::vector<double> normal, normal_mass;
+  std::vector<Vec3> tangential, normal_response;
+  std::vector<int> colour_of;
+  std::vector<int> by_key, sweep_order;    // island contacts by key, and colour by colour
+  std::vector<std::vector<int>> body_colours;    // per body: the colours of its contacts so far
 
   std::size_t size() const { return island_contacts->size(); }
   SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }

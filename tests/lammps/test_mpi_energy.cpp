@@ -115,7 +115,7 @@ TEST_F(DensePackingEnergy, OverlapCorrectionAddsAtMostItsMinimumSeparationEnergy
 
 TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithRestingContactsSolvedTogether)
 {
-  // A denser packing (100-200 contacts a step, 30-45 sweeps); contacts approaching slower than
+  // A denser packing (100-200 contacts a step); contacts approaching slower than
   // 5 mm/s (a tenth of the packing's speeds) solved together. The ledger matches the kinetic
   // energy lost exactly on 1 rank; on 2 and 4 ranks this packing leaves a gap of up to 0.7%, with
   // or without the resting solve (not yet explained).
