@@ -62,7 +62,7 @@ for phi_b in "${phis[@]}"; do
       -log "$work/grow-$phi_b.log" -echo none >/dev/null 2>&1) \
     || { echo "grow failed: phi_b $phi_b" >&2; tail -5 "$work/grow-$phi_b.log" >&2; exit 1; }
   state=$(ls "$work/state-$phi_b"-*s.data.gz)
-  atoms=$(zcat "$state" | awk '/ atoms$/ {print $1; exit}')
+  atoms=$(gzip -dc "$state" | awk '/ atoms$/ && !n {n = $1} END {print n}')
   printf '%-8s %-8s %-7s %-6s' "$(awk -v a="$phi_b" -v b=$phi_r 'BEGIN{printf "%.3f", a+b}')" "$phi_b" $phi_r "$atoms"
   for side in "${sides[@]}"; do
     if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then
