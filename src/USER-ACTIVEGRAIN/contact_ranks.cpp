@@ -5,6 +5,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "ghost_cutoff.h"
 #include "lowest_tag_rule.h"
 #include "neighbor.h"
 #include "rigid_body_provider.h"
@@ -49,7 +50,7 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
   }
 }
 
-// span + neighbor cutoff <= ghost cutoff. The span (largest distance between two atoms of a body) is measured where a
+// span + neighbor cutoff <= ghost cutoff (ghost_cutoff.h: the rule fix rigid/rod quotes too). The span (largest distance between two atoms of a body) is measured where a
 // whole body is visible (fix rigid/small's ghost cutoff check ensures one rank sees it).
 void ContactRanks::check_ghost_cutoff(const char *style)
 {
@@ -76,11 +77,10 @@ void ContactRanks::check_ghost_cutoff(const char *style)
   }
   double largest = 0.0;
   MPI_Allreduce(&span, &largest, 1, MPI_DOUBLE, MPI_MAX, world);
-  const double needed = largest + neighbor->cutneighmax;
-  if (needed > comm->get_comm_cutoff())
+  if (ghost_cutoff_needed(lmp, largest) > comm->get_comm_cutoff())
     error->all(FLERR, "{}: rigid body span {:.6g} + neighbor cutoff {:.6g} exceeds the ghost cutoff "
-               "{:.6g}: use comm_modify cutoff {:.6g}", style, largest, neighbor->cutneighmax,
-               comm->get_comm_cutoff(), needed);
+               "{:.6g}: use comm_modify cutoff {:.6g} (valid on any number of ranks)", style, largest,
+               neighbor->cutneighmax, comm->get_comm_cutoff(), ghost_cutoff_quoted(lmp, largest));
 }
 
 double ContactRanks::memory_usage() const

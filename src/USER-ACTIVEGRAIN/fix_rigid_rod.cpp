@@ -7,6 +7,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "ghost_cutoff.h"
 #include "math_extra.h"
 #include "memory.h"
 #include "molecule.h"
@@ -82,6 +83,14 @@ FixRigidRod::FixRigidRod(LAMMPS *lmp, int narg, char **arg) : FixRigidSmall(lmp,
   if (tail_type == nose_type)
     error->all(FLERR, "{}: template {}: tail and nose atoms have the same type", STYLE, rod->id);
 
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const double d = ActiveGrain::norm(v3(rod->x[j]) - v3(rod->x[i]));
+      if (d > template_span) {
+        template_span = d;
+        template_length = d + (rod->radiusflag ? rod->radius[i] + rod->radius[j] : 0.0);
+      }
+    }
   Vec3 axis = v3(rod->x[n - 1]) - v3(rod->x[0]);
   axis = axis / ActiveGrain::norm(axis);
   const Vec3 trial = std::fabs(axis.x) < TRIAL_AXIS_COSINE ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
@@ -131,15 +140,24 @@ void FixRigidRod::init()
   if (!force->pair || !force->pair_match("gran/impulse", 0))
     error->all(FLERR, "{}: rods need pair_style gran/impulse (found pair_style {})", STYLE,
                force->pair ? force->pair_style : "none");
+  // A rod as long as a periodic box length would touch its own image.
+  const char axis[3] = {'x', 'y', 'z'};
+  for (int d = 0; d < domain->dimension; d++)
+    if (domain->periodicity[d] && template_length >= domain->prd[d])
+      error->all(FLERR, "{}: rods of template {} are {:.6g} long, longer than the periodic box ({} length "
+                 "{:.6g}): a rod would touch its own image; enlarge the box", STYLE, onemols[0]->id,
+                 template_length, axis[d], domain->prd[d]);
 }
 
 void FixRigidRod::setup_pre_neighbor()
 {
   // The whole rod must be visible as ghosts where any of its atoms is.
+  // The value quoted is the rule of ghost_cutoff.h (what pair gran/impulse asks for on more than
+  // one rank), not the extent alone, so that it holds on any number of ranks.
   const double cutghost = std::max(neighbor->cutneighmax, comm->cutghostuser);
   if (maxextent > cutghost)
-    error->all(FLERR, "{}: rod extent {} exceeds the ghost cutoff {}: use comm_modify cutoff {}", STYLE,
-               maxextent, cutghost, maxextent);
+    error->all(FLERR, "{}: rod extent {:.6g} exceeds the ghost cutoff {:.6g}: use comm_modify cutoff {:.6g} "
+               "(valid on any number of ranks)", STYLE, maxextent, cutghost, ghost_cutoff_quoted(lmp, template_span));
   const bool reinit = reinitflag || !setupflag;
   FixRigidSmall::setup_pre_neighbor();
   if (reinit) impose_rod_bodies();
@@ -183,6 +201,25 @@ void FixRigidRod::impose_rod_bodies()
   rod_comm = RodComm::POLAR_SUM;
   comm->reverse_comm(this, NSUM);
   rod_comm = RodComm::NONE;
+
+  // A body is the atoms of one molecule ID: a rod whose atoms carry two IDs (a stray set ... mol)
+  // makes a body of another size than the template.
+  tagint mixed = 0;
+  int mixed_atoms = 0;
+  for (int ib = 0; ib < nlocal_body && !mixed; ++ib)
+    if (body[ib].natoms != onemols[0]->natoms) {
+      mixed = atom->molecule[body[ib].ilocal];
+      mixed_atoms = body[ib].natoms;
+    }
+  tagint any_mixed = 0;
+  MPI_Allreduce(&mixed, &any_mixed, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if (any_mixed) {
+    int atoms_of_it = any_mixed == mixed ? mixed_atoms : 0, atoms = 0;
+    MPI_Allreduce(&atoms_of_it, &atoms, 1, MPI_INT, MPI_MAX, world);
+    error->all(FLERR, "{}: molecule ID {} has {} atoms, a rod of template {} has {}: a rod's atoms must carry "
+               "one molecule ID of their own (check set ... mol and the data file's molecule IDs)", STYLE,
+               any_mixed, atoms, onemols[0]->id, onemols[0]->natoms);
+  }
 
   int bad = 0;
   for (int ib = 0; ib < nlocal_body; ++ib) {

@@ -45,6 +45,8 @@ class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
 
   int tail_type = 0, nose_type = 0;                           // from the template's end atoms
   double inertia_axial = 0.0, inertia_transverse = 0.0;       // of the solid rod
+  double template_span = 0.0;      // largest distance between two atom centres of the template
+  double template_length = 0.0;    // tip to tip: the span plus the end spheres' radii
   double **state = nullptr;        // per atom (owned + ghost): see STATE_* in the .cpp
   double **output = nullptr;       // per owned atom: its rod's polar axis and body ID, else 0 (OUT_*)
   double **polar_sum = nullptr;    // per body, during setup: sum of nose - tail offsets, counts

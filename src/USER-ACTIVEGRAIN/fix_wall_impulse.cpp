@@ -13,6 +13,7 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "modify.h"
 #include "update.h"
 #include "utils.h"
 
@@ -137,6 +138,39 @@ void FixWallImpulse::init()
                  STYLE, gap, group->names[igroup], diameter);
   }
   check_time_step(true);
+  check_deck();
+}
+
+// Two fixes wall/impulse on the same atoms would each add their plates' impulses (plates counted
+// twice). Vibrated flat plates under beads: the deterministic model (a bed that soon stops moving
+// sideways), told once, since rough plates are what the calibration used.
+void FixWallImpulse::check_deck()
+{
+  bool after = false;
+  for (Fix *fix : modify->get_fix_list()) {
+    if (fix == this) {
+      after = true;
+      continue;
+    }
+    if (!after || strcmp(fix->style, "wall/impulse") != 0) continue;
+    int shared = 0, any = 0;
+    for (int i = 0; i < atom->nlocal && !shared; i++)
+      if ((atom->mask[i] & groupbit) && (atom->mask[i] & fix->groupbit)) shared = 1;
+    MPI_Allreduce(&shared, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any)
+      error->all(FLERR, "{}: fixes {} and {} act on the same atoms: their plates would be counted twice; one fix "
+                 "wall/impulse holds both plates (keywords gap and lid), so unfix one of them", STYLE, id, fix->id);
+  }
+  if (warned_flat || rough_slope > 0.0 || !(amplitude > 0.0 && frequency > 0.0)) return;
+  int beads = 0, any = 0;
+  for (int i = 0; i < atom->nlocal && !beads; i++)
+    if ((atom->mask[i] & groupbit) && !(atom->molecule_flag && atom->molecule[i] > 0)) beads = 1;
+  MPI_Allreduce(&beads, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any && comm->me == 0)
+    error->warning(FLERR, "{}: vibrated flat plates (no keyword rough) with beads: the deterministic model, in "
+                   "which a bead bed soon stops moving sideways; for the calibrated plates add rough SLOPE LENGTH "
+                   "SEED (docs/calibration.rst)", STYLE);
+  warned_flat = any != 0;
 }
 
 // The drive must be resolved in time: checked before each run (with a warning when the plates

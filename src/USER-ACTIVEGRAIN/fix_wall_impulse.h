@@ -38,6 +38,8 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   enum class Lid { NONE, MOVING, FIXED };
 
   void check_time_step(bool warn);
+  void check_deck();
+  bool warned_flat = false;
   double time_now() const;
   double base_z(double t) const;
   double base_vz(double t) const;

@@ -16,6 +16,7 @@
 #include "style_inputs.h"
 #include "memory.h"
 #include "modify.h"
+#include "molecule.h"
 #include "neighbor.h"
 #include "rigid_body_provider.h"
 #include "update.h"
@@ -35,6 +36,13 @@ static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution).
 static constexpr int RESTART_FORMAT = -3;
+// The units check (check_deck): in lj units, grains smaller than this are SI numbers when gravity
+// or the plates' acceleration is >= 1 or the skin is this many diameters; in si units, grains
+// this large with gravity below SI_SMALL_GRAVITY are lj numbers.
+static constexpr double LJ_SMALL_DIAMETER = 0.01;
+static constexpr double LJ_SKIN_DIAMETERS = 10.0;
+static constexpr double SI_LARGE_DIAMETER = 0.5;
+static constexpr double SI_SMALL_GRAVITY = 2.0;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
     Pair(lmp), beta(DEFAULT_BETA), order(ContactOrder::SHUFFLE), resting(0.0), restitution(nullptr), friction(nullptr),
@@ -156,6 +164,7 @@ void PairGranImpulse::init_style()
   find_fixes();
   request_neighbors();
   find_type_radii();
+  check_deck();
   assembly.init(beta, order, restitution, friction, walls);
 }
 
@@ -175,6 +184,69 @@ void PairGranImpulse::refuse_unsupported()
       error->all(FLERR, "{}: fix {} (style {}) makes rigid bodies whose atoms this pair style would "
                  "solve as free spheres: use fix rigid/rod (a body's mass, centre of mass and "
                  "inertia enter the contact)", STYLE, fix->id, fix->style);
+  refuse_integrated_rod_atoms();
+}
+
+// Rod atoms (a molecule ID, with a template of several atoms defined: rod_template) moved by an
+// integrator of free particles (fix nve/sphere and the like) fall apart or are integrated twice.
+void PairGranImpulse::refuse_integrated_rod_atoms()
+{
+  if (!atom->molecule_flag) return;
+  int largest_template = 0;
+  for (int m = 0; m < atom->nmolecule; m++) largest_template = std::max(largest_template, atom->molecules[m]->natoms);
+  if (largest_template < 2) return;
+  for (Fix *fix : modify->get_fix_list()) {
+    if (!fix->time_integrate || fix->rigid_flag) continue;
+    int found = 0, any = 0;
+    for (int i = 0; i < atom->nlocal && !found; i++)
+      if ((atom->mask[i] & fix->groupbit) && atom->molecule[i] > 0) found = 1;
+    MPI_Allreduce(&found, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any)
+      error->all(FLERR, "{}: fix {} (style {}) integrates rod atoms (atoms with a molecule ID) as free "
+                 "particles: rods need fix rigid/rod (fix ID rods rigid/rod molecule mol TEMPLATE), and fix {} "
+                 "only the beads (a group without the rods)", STYLE, fix->id, fix->style, fix->style);
+  }
+}
+
+// Inputs that run but do not mean what they say, checked before each run (a variable gravity
+// counts from its first step's value): LAMMPS's default lj units with SI-sized numbers (or the reverse), and gravity
+// with nothing to hold the particles.
+void PairGranImpulse::check_deck()
+{
+  const double diameter = 2.0 * largest_type_radius();
+  double acceleration = 0.0;
+  for (const ImpulseWall *wall : walls) acceleration = std::max(acceleration, wall->peak_acceleration());
+  bodies.begin_step();
+  const double gravity = bodies.largest_gravity();
+  // lj units measure lengths in grain diameters (LAMMPS's granular decks: d = 1, g = 1). Grains a
+  // hundredth of the length unit are SI numbers (metres) when gravity or the plates' acceleration
+  // is of order 1 or more (9.81, 4e-5 (2 pi 200)^2 = 63) or the skin is many diameters (lj's
+  // default 0.3): forgotten units si.
+  if (diameter > 0.0 && diameter < LJ_SMALL_DIAMETER && strcmp(update->unit_style, "lj") == 0) {
+    const bool si_numbers = gravity >= 1.0 || acceleration >= 1.0 || neighbor->skin >= LJ_SKIN_DIAMETERS * diameter;
+    const std::string what = fmt::format("particles of diameter {:.3g} in units lj (LAMMPS's default units, "
+                                         "lengths in grain diameters); gravity {:.3g}, skin {:.3g}", diameter,
+                                         gravity, neighbor->skin);
+    if (si_numbers)
+      error->all(FLERR, "{}: {}: these are SI numbers: add units si at the top of the deck (before create_box "
+                 "or read_data)", STYLE, what);
+    else if (comm->me == 0 && !warned_units)
+      error->warning(FLERR, "{}: {}: if these are SI numbers, add units si at the top of the deck", STYLE, what);
+    warned_units = true;
+  }
+  // The reverse: SI units, grains of half a metre or more and a gravity of order 1 (lj's g = 1).
+  if (diameter >= SI_LARGE_DIAMETER && gravity > 0.0 && gravity < SI_SMALL_GRAVITY &&
+      strcmp(update->unit_style, "si") == 0 && comm->me == 0 && !warned_units) {
+    error->warning(FLERR, "{}: particles of diameter {:.3g} m with gravity {:.3g} m/s^2 in units si: if these are "
+                   "lj numbers (lengths in grain diameters), remove units si", STYLE, diameter, gravity);
+    warned_units = true;
+  }
+  // Gravity with no plate: particles fall out of a bounded box ("Lost atoms") or forever.
+  if (gravity > 0.0 && walls.empty() && comm->me == 0 && !warned_no_walls) {
+    error->warning(FLERR, "{}: fix gravity acts but no fix wall/impulse or wall/impulse/region holds the "
+                   "particles: they will fall through (Lost atoms in a bounded box); add fix wall/impulse", STYLE);
+    warned_no_walls = true;
+  }
 }
 
 // Rigid-body providers, wall fixes, fix gravity and fix freeze (its atoms are bodies of infinite

@@ -72,6 +72,9 @@ class PairGranImpulse : public Pair {
   void request_neighbors();
   void find_type_radii();
   void refuse_unsupported();
+  void refuse_integrated_rod_atoms();
+  void check_deck();
+  bool warned_no_walls = false, warned_units = false;
   void setup_step();
   void assemble();
   void solve();
