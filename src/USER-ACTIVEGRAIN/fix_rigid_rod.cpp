@@ -16,6 +16,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <unordered_map>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -140,6 +143,7 @@ void FixRigidRod::init()
   if (!force->pair || !force->pair_match("gran/impulse", 0))
     error->all(FLERR, "{}: rods need pair_style gran/impulse (found pair_style {})", STYLE,
                force->pair ? force->pair_style : "none");
+  check_molecule_ids();
   // A rod as long as a periodic box length would touch its own image.
   const char axis[3] = {'x', 'y', 'z'};
   for (int d = 0; d < domain->dimension; d++)
@@ -147,6 +151,37 @@ void FixRigidRod::init()
       error->all(FLERR, "{}: rods of template {} are {:.6g} long, longer than the periodic box ({} length "
                  "{:.6g}): a rod would touch its own image; enlarge the box", STYLE, onemols[0]->id,
                  template_length, axis[d], domain->prd[d]);
+}
+
+// A body is the atoms of one molecule ID: a rod whose atoms carry two IDs (a stray set ... mol, a
+// data file edited by hand) leaves a molecule ID with more or fewer atoms than the template.
+void FixRigidRod::check_molecule_ids()
+{
+  std::unordered_map<tagint, int> local;
+  for (int i = 0; i < atom->nlocal; ++i)
+    if ((atom->mask[i] & groupbit) && atom->molecule[i] > 0) ++local[atom->molecule[i]];
+  std::vector<tagint> ids;
+  std::vector<int> counts;
+  for (const auto &entry : local) {
+    ids.push_back(entry.first);
+    counts.push_back(entry.second);
+  }
+  const int n = (int) ids.size(), nprocs = comm->nprocs;
+  std::vector<int> sizes(nprocs), offsets(nprocs, 0);
+  MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, world);
+  for (int p = 1; p < nprocs; ++p) offsets[p] = offsets[p - 1] + sizes[p - 1];
+  const int total = offsets[nprocs - 1] + sizes[nprocs - 1];
+  std::vector<tagint> all_ids(std::max(total, 1));
+  std::vector<int> all_counts(std::max(total, 1));
+  MPI_Allgatherv(ids.data(), n, MPI_LMP_TAGINT, all_ids.data(), sizes.data(), offsets.data(), MPI_LMP_TAGINT, world);
+  MPI_Allgatherv(counts.data(), n, MPI_INT, all_counts.data(), sizes.data(), offsets.data(), MPI_INT, world);
+  std::map<tagint, int> atoms_of;
+  for (int k = 0; k < total; ++k) atoms_of[all_ids[k]] += all_counts[k];
+  for (const auto &entry : atoms_of)
+    if (entry.second != onemols[0]->natoms)
+      error->all(FLERR, "{}: molecule ID {} has {} atoms, a rod of template {} has {}: a rod's atoms must carry "
+                 "one molecule ID of their own (check set ... mol and the data file's Molecules section)", STYLE,
+                 entry.first, entry.second, onemols[0]->id, onemols[0]->natoms);
 }
 
 void FixRigidRod::setup_pre_neighbor()
@@ -201,25 +236,6 @@ void FixRigidRod::impose_rod_bodies()
   rod_comm = RodComm::POLAR_SUM;
   comm->reverse_comm(this, NSUM);
   rod_comm = RodComm::NONE;
-
-  // A body is the atoms of one molecule ID: a rod whose atoms carry two IDs (a stray set ... mol)
-  // makes a body of another size than the template.
-  tagint mixed = 0;
-  int mixed_atoms = 0;
-  for (int ib = 0; ib < nlocal_body && !mixed; ++ib)
-    if (body[ib].natoms != onemols[0]->natoms) {
-      mixed = atom->molecule[body[ib].ilocal];
-      mixed_atoms = body[ib].natoms;
-    }
-  tagint any_mixed = 0;
-  MPI_Allreduce(&mixed, &any_mixed, 1, MPI_LMP_TAGINT, MPI_MAX, world);
-  if (any_mixed) {
-    int atoms_of_it = any_mixed == mixed ? mixed_atoms : 0, atoms = 0;
-    MPI_Allreduce(&atoms_of_it, &atoms, 1, MPI_INT, MPI_MAX, world);
-    error->all(FLERR, "{}: molecule ID {} has {} atoms, a rod of template {} has {}: a rod's atoms must carry "
-               "one molecule ID of their own (check set ... mol and the data file's molecule IDs)", STYLE,
-               any_mixed, atoms, onemols[0]->id, onemols[0]->natoms);
-  }
 
   int bad = 0;
   for (int ib = 0; ib < nlocal_body; ++ib) {

@@ -45,6 +45,7 @@ class FixRigidRod : public FixRigidSmall, public RigidBodyProvider {
 
   int tail_type = 0, nose_type = 0;                           // from the template's end atoms
   double inertia_axial = 0.0, inertia_transverse = 0.0;       // of the solid rod
+  void check_molecule_ids();
   double template_span = 0.0;      // largest distance between two atom centres of the template
   double template_length = 0.0;    // tip to tip: the span plus the end spheres' radii
   double **state = nullptr;        // per atom (owned + ghost): see STATE_* in the .cpp

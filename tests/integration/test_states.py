@@ -224,3 +224,55 @@ def test_a_bad_state_stops_with_an_error_naming_the_deck_and_the_variable(tmp_pa
     assert errors and errors[0].startswith(f"ERROR: in.create: -var from {path}"), done.stdout[-2000:]
     assert expected in errors[0]
     assert "Created" not in done.stdout and "Loop time" not in done.stdout    # stopped before any system
+
+
+def with_molecule_ids(source, target, change):
+    """The gzipped state `source` written to `target` with change(atom_id -> mol, types) applied to its
+    Molecules section (types: atom ID -> type)."""
+    with gzip.open(source, "rt") as f:
+        lines = f.read().splitlines()
+    _, sections = read_state(source)
+    types = {int(row[0]): int(row[1]) for row in sections["Atoms"]}
+    mols = {int(row[0]): int(row[1]) for row in sections["Molecules"]}
+    change(mols, types)
+    out, current = [], None
+    for line in lines:
+        words = line.split()
+        if words and words[0] in ("Atoms", "Velocities", "Molecules"):
+            current = words[0]
+        elif current == "Molecules" and words and words[0].isdigit():
+            line = f"{words[0]} {mols[int(words[0])]}"
+        out.append(line)
+    with gzip.open(target, "wt") as f:
+        f.write("\n".join(out) + "\n")
+    return target
+
+
+def first_rod_atom(mols, types):
+    return min(a for a, t in types.items() if t != 4)
+
+
+def drop_id(mols, types):
+    mols[first_rod_atom(mols, types)] = 0
+
+
+def other_rods_id(mols, types):
+    atom = first_rod_atom(mols, types)
+    mols[atom] = max(m for a, m in mols.items() if m != mols[atom])
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+@pytest.mark.parametrize("kind, expected", [
+    ("missing", "ERROR: in.create: -var from {path}: 1 rod atoms (types 1 to 3) have no molecule ID (0)"),
+    ("inconsistent", "ERROR: Fix rigid/rod: molecule ID")])
+def test_a_state_with_missing_or_inconsistent_molecule_ids_is_refused_with_the_reason(runs, tmp_path, kind,
+                                                                                      expected, ranks):
+    path = with_molecule_ids(runs(1)["state"], tmp_path / f"{kind}.data.gz",
+                             drop_id if kind == "missing" else other_rods_id)
+    done = subprocess.run([*mpi_prefix(ranks), LMP, "-in", "in.channel-small", "-var", "out", str(tmp_path / "out"),
+                           "-var", "from", str(path), "-var", "time", str(END), "-log", "none"],
+                          cwd=EXAMPLES / "channel", capture_output=True, text=True, timeout=120)
+    assert done.returncode != 0, done.stdout[-2000:] + done.stderr[-2000:]
+    errors = [line for line in done.stdout.splitlines() if line.startswith("ERROR")]
+    assert errors and errors[0].startswith(expected.format(path=path)), done.stdout[-2000:]
+    assert "Loop time" not in done.stdout
