@@ -187,19 +187,28 @@ void PairGranImpulse::refuse_unsupported()
   refuse_integrated_rod_atoms();
 }
 
-// Rod atoms (a molecule ID, with a template of several atoms defined: rod_template) moved by an
-// integrator of free particles (fix nve/sphere and the like) fall apart or are integrated twice.
+// Rod atoms (a molecule ID, with a template of several atoms defined: rod_template; with fix
+// rigid/rod, those of its group) moved by an integrator of free particles (fix nve/sphere and the like) fall apart or are integrated twice.
 void PairGranImpulse::refuse_integrated_rod_atoms()
 {
   if (!atom->molecule_flag) return;
   int largest_template = 0;
   for (int m = 0; m < atom->nmolecule; m++) largest_template = std::max(largest_template, atom->molecules[m]->natoms);
   if (largest_template < 2) return;
+  // Rod atoms: those of fix rigid/rod's groups, or without such a fix, all with a molecule ID.
+  int rod_groups = 0;
+  bool rod_fix = false;
+  for (Fix *fix : modify->get_fix_list())
+    if (fix->rigid_flag && dynamic_cast<RigidBodyProvider *>(fix)) {
+      rod_groups |= fix->groupbit;
+      rod_fix = true;
+    }
   for (Fix *fix : modify->get_fix_list()) {
     if (!fix->time_integrate || fix->rigid_flag) continue;
     int found = 0, any = 0;
     for (int i = 0; i < atom->nlocal && !found; i++)
-      if ((atom->mask[i] & fix->groupbit) && atom->molecule[i] > 0) found = 1;
+      if ((atom->mask[i] & fix->groupbit) && atom->molecule[i] > 0 && (!rod_fix || (atom->mask[i] & rod_groups)))
+        found = 1;
     MPI_Allreduce(&found, &any, 1, MPI_INT, MPI_MAX, world);
     if (any)
       error->all(FLERR, "{}: fix {} (style {}) integrates rod atoms (atoms with a molecule ID) as free "

@@ -159,12 +159,14 @@ TEST_F(Guards, PlateSpeedCountsInTheSkinWarning)
   // the skin: a warning although no particle moves; 0.5 mm gives at most 6.3 m/s, 0.063 mm per
   // step (no warning). 5 steps each: the plate does not reach the bead.
   bead(0.005, 0.005, 0.0015, 0, 0, 0);
-  command("fix nve all nve/sphere\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 1e-3 2000 0");
+  command("fix nve all nve/sphere\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 1e-3 2000 0 "
+          "rough 0.1 2e-3 7");    // (rough: no note on flat plates)
   int before = warnings();
   command("run 5 post no");
   EXPECT_EQ(warnings(), before + 1);
   EXPECT_EQ(value("vz[1]"), 0.0);    // only the plate moved
-  command("unfix plates\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 5e-4 2000 0");
+  command("unfix plates\nfix plates all wall/impulse zlo 0.0 e 0.3 mu 0.01 vibrate 5e-4 2000 0 "
+          "rough 0.1 2e-3 7");
   before = warnings();
   command("run 5 post no");
   EXPECT_EQ(warnings(), before);
