@@ -250,8 +250,9 @@ void PairGranImpulse::check_deck()
                    "lj numbers (lengths in grain diameters), remove units si", STYLE, diameter, gravity);
     warned_units = true;
   }
-  // Gravity with no plate: particles fall out of a bounded box ("Lost atoms") or forever.
-  if (gravity > 0.0 && walls.empty() && comm->me == 0 && !warned_no_walls) {
+  // Gravity with no plate (nor frozen grains to rest on): particles fall out of a bounded box ("Lost atoms") or forever.
+  if (gravity > 0.0 && walls.empty() && modify->get_fix_by_style("^freeze").empty() && comm->me == 0 &&
+      !warned_no_walls) {
     error->warning(FLERR, "{}: fix gravity acts but no fix wall/impulse or wall/impulse/region holds the "
                    "particles: they will fall through (Lost atoms in a bounded box); add fix wall/impulse", STYLE);
     warned_no_walls = true;
