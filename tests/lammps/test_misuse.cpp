@@ -50,9 +50,11 @@ TEST_F(Misuse, ForgottenUnitsSiIsRefused)
 {
   command(bead_deck("units si") + GRAVITY + PLATES);
   EXPECT_EQ(error_of("run 10 post no"), "");
-  // The same numbers in lj units: with gravity, with vibration alone, or with neither (lj's skin 0.3).
-  const char *const extras[] = {GRAVITY, PLATES, ""};
-  for (const char *extra : extras) {
+  // The same numbers in lj units, each sign alone: gravity 9.81, the plates' 63 (4e-5 (2 pi 200)^2),
+  // or lj's default skin 0.3 (300 diameters).
+  const std::string small_skin = "neighbor 1e-4 bin\n";
+  const std::string extras[] = {GRAVITY + small_skin, PLATES + small_skin, ""};
+  for (const std::string &extra : extras) {
     command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
     command(bead_deck("") + extra);
     EXPECT_THAT(error_of("run 10 post no"),
