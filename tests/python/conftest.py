@@ -1,3 +1,16 @@
 import matplotlib
+import pytest
 
 matplotlib.use("Agg")
+
+
+@pytest.fixture(scope="session")
+def short_run_frames():
+    """Three isotropic frames of a 40 x 20 mm cell, 1000 steps apart (SI lengths), for dumps."""
+    from activegrain import synthetic as S
+    frames = []
+    for k in range(3):
+        fr = S.phase_configuration("isotropic", length=40.0, width=20.0)
+        fr.step = 1000 * k
+        frames.append(fr.scaled(1e-3))
+    return frames

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from activegrain import synthetic as S, write_dump
+from activegrain import write_dump
 
 PYTHON_DIR = pathlib.Path(__file__).resolve().parents[2] / "python"
 
@@ -31,14 +31,9 @@ def one_line(done, prefix):
 
 
 @pytest.fixture(scope="module")
-def dumps(tmp_path_factory):
+def dumps(tmp_path_factory, short_run_frames):
     folder = tmp_path_factory.mktemp("dumps")
-    frames = []
-    for k in range(3):
-        fr = S.phase_configuration("isotropic", length=40.0, width=20.0)
-        fr.step = 1000 * k
-        frames.append(fr.scaled(1e-3))
-    write_dump(folder / "run.dump", frames)
+    write_dump(folder / "run.dump", short_run_frames)
     text = (folder / "run.dump").read_text()
     (folder / "killed.dump").write_text(text[:text.index("ITEM: TIMESTEP\n2000") + 300])
     (folder / "nocols.dump").write_text("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"

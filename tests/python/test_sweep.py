@@ -104,16 +104,11 @@ with open(os.path.join(var["out"], "run.dump"), "w") as out:
 
 
 @pytest.fixture
-def fake(tmp_path, monkeypatch):
+def fake(tmp_path, monkeypatch, short_run_frames):
     """A sweep config whose lmp is FAKE_LMP; ``calls()`` lists the phi_b of each run made."""
     import sys
-    from activegrain import synthetic as S, write_dump
-    frames = []
-    for k in range(3):
-        fr = S.phase_configuration("isotropic", length=40.0, width=20.0)
-        fr.step = 1000 * k
-        frames.append(fr.scaled(1e-3))
-    write_dump(tmp_path / "template.dump", frames)
+    from activegrain import write_dump
+    write_dump(tmp_path / "template.dump", short_run_frames)
     lmp = tmp_path / "lmp"
     lmp.write_text(FAKE_LMP.format(python=sys.executable))
     lmp.chmod(0o755)
