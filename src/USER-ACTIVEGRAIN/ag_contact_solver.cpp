@@ -115,14 +115,18 @@ Vec3 ContactSolver::impact_alone(const Contact &c, double min_separation) const
   return contact_law_impulse(c.K, u, c.n, c.material, target);
 }
 
+// A contact's whole impulse by Stronge's law: on the bodies, acting when it closes.
+void ContactSolver::solve_alone(Contact &c, double min_separation)
+{
+  c.impulse = impact_alone(c, min_separation);
+  c.late = c.impulse * c.time;
+  apply_impulse(bodies, c, c.impulse);
+}
+
 void ContactSolver::solve_isolated()
 {
   for (Contact &c : contacts)
-    if (c.isolated) {
-      c.impulse = impact_alone(c, c.min_separation);
-      c.late = c.impulse * c.time;
-      apply_impulse(bodies, c, c.impulse);
-    }
+    if (c.isolated) solve_alone(c, c.min_separation);
 }
 
 void ContactSolver::measure_approaches(const std::vector<int> &island)
@@ -234,10 +238,7 @@ int ContactSolver::solve_impacts_then_resting(const std::vector<int> &island, co
   for (int g = 0; g < groups && substeps >= 0; ++g) {
     const std::vector<int> &group = impact_islands[g];
     if (group.size() == 1) {    // Stronge's law, exactly (its overlap is opened below)
-      Contact &c = contacts[group[0]];
-      c.impulse = impact_alone(c, 0.0);
-      c.late = c.impulse * c.time;
-      apply_impulse(bodies, c, c.impulse);
+      solve_alone(contacts[group[0]], 0.0);
       continue;
     }
     const int s = solve_island(group, settings);

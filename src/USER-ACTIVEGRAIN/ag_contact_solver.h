@@ -85,6 +85,7 @@ class ContactSolver {
   double separate_overlaps(const std::vector<int> &island, const Settings &settings);    // the shortfall left
 
   Vec3 impact_alone(const Contact &c, double min_separation) const;
+  void solve_alone(Contact &c, double min_separation);
   void measure_approaches(const std::vector<int> &island);
   double closing_time(const Contact &c, double approach_speed, const Settings &settings) const;
 

@@ -160,21 +160,21 @@ TangentialStep::TangentialStep(const Mat3 &K, const Vec3 &n)
   stick_ratio = std::sqrt(s1 * s1 + s2 * s2);
 }
 
-Vec3 TangentialStep::stick(const Vec3 &u, double dp) const
+Vec3 TangentialStep::stick(double b1, double b2) const
 {
-  const double b1 = -dot(tangent1, u) - dp * kn1, b2 = -dot(tangent2, u) - dp * kn2;
   return tangent1 * (inv11 * b1 + inv12 * b2) + tangent2 * (inv12 * b1 + inv22 * b2);
 }
 
 Vec3 TangentialStep::friction(const Vec3 &u, double mu, double dp, bool &stuck) const
 {
-  const Vec3 sticking = stick(u, dp);
+  const double b1 = -dot(tangent1, u) - dp * kn1, b2 = -dot(tangent2, u) - dp * kn2;
+  const Vec3 sticking = stick(b1, b2);
   const double limit = mu * dp;
   stuck = norm(sticking) <= limit;
   if (stuck) return sticking;
   // Against the slip the step would reach without friction: the current slip where it is large,
   // the slip the normal impulse itself drives where it starts from rest.
-  const Vec3 slip = -(tangent1 * (-dot(tangent1, u) - dp * kn1) + tangent2 * (-dot(tangent2, u) - dp * kn2));
+  const Vec3 slip = -(tangent1 * b1 + tangent2 * b2);
   return slip * (-limit / norm(slip));
 }
 

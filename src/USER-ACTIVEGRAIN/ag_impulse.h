@@ -57,10 +57,11 @@ class TangentialStep {
   Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
   // Tangential impulse that stops the slip of u with no normal impulse (a resting contact's
   // friction, bounded by its accumulated normal impulse: ag_resting_solve.h).
-  Vec3 stopping(const Vec3 &u) const { return stick(u, 0.0); }
+  Vec3 stopping(const Vec3 &u) const { return stick(-dot(tangent1, u), -dot(tangent2, u)); }
 
  private:
-  Vec3 stick(const Vec3 &u, double dp) const;    // the tangential impulse that stops the slip
+  // The tangential impulse that stops a slip of components -b1, -b2 along the tangents.
+  Vec3 stick(double b1, double b2) const;
 
   Vec3 tangent1, tangent2;    // the contact frame's tangents
   // The inverse of K on the tangent plane (symmetric) and the tangential components of K n.

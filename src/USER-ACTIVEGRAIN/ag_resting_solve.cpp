@@ -63,7 +63,6 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   for (int k : by_key)
     for (int b : {contact(k).body1, contact(k).body2}) body_colours[b].clear();
   colour_of.resize(n);
-  int colours = 0;
   for (int k : by_key) {
     const SolverContact &c = contact(k);
     auto used = [&](int b, int colour) {
@@ -73,14 +72,11 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     int colour = 0;
     while (used(c.body1, colour) || used(c.body2, colour)) ++colour;
     colour_of[k] = colour;
-    colours = std::max(colours, colour + 1);
     for (int b : {c.body1, c.body2})
       if (!bodies[b].is_static()) body_colours[b].push_back(colour);
   }
-  sweep_order.clear();
-  for (int colour = 0; colour < colours; ++colour)
-    for (int k : by_key)
-      if (colour_of[k] == colour) sweep_order.push_back(k);
+  sweep_order = by_key;
+  std::stable_sort(sweep_order.begin(), sweep_order.end(), [&](int a, int b) { return colour_of[a] < colour_of[b]; });
 }
 
 // The last step's impulse, within this step's cone: its normal part if pressing, its tangential

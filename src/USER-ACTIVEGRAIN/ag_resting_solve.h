@@ -10,7 +10,7 @@
 // Gauss-Seidel sweeps on accumulated impulses (normal, over-relaxed, then friction, per contact),
 // warm-started from the impulses the same contacts carried in the last step
 // (SolverContact::warm). The contacts are coloured so that no two of a colour share a movable
-// body, in the order of their keys (SolverContact::key, their identity): a sweep visits the
+// body, in the order of their keys (SolverContact::key, from their identity): a sweep visits the
 // colours in turn, and its result does not depend on the order in which the contacts came, bit
 // for bit. Sweeps stop once none changes a contact's velocity by more than
 // SolverSettings::resting_tolerance of the resting speed.

@@ -21,7 +21,7 @@ struct SolverContact {
   Vec3 gain;
   double time = 0.0;              // when within the step it closes (0: touching at the start)
   Vec3 warm;                      // its resting impulse in the last step (ag_resting_solve.h)
-  std::uint64_t key = 0;          // its identity, the same whatever the order (ag_resting_solve.h)
+  std::uint64_t key = 0;          // from its identity, the same whatever the order (ag_resting_solve.h)
   // Filled by the solve:
   Mat3 K;
   bool isolated = false;          // the only contact of both its (movable) bodies

@@ -159,7 +159,7 @@ void ContactAssembly::add_found_contacts()
                                           c.prediction.time_to_contact);
     atom_contacts.push_back(c.atoms);
     identities.push_back(c.identity);
-    solver.set_key(k, IdentityHash()(c.identity));
+    solver.set_key(k, c.shuffle);    // from the contact's identity and the step, on any rank
     if (resting_impulses.empty()) continue;
     const auto last = resting_impulses.find(c.identity);
     if (last != resting_impulses.end()) solver.set_warm(k, last->second);
