@@ -188,7 +188,8 @@ void PairGranImpulse::refuse_unsupported()
 }
 
 // Rod atoms (a molecule ID, with a template of several atoms defined: rod_template; with fix
-// rigid/rod, those of its group) moved by an integrator of free particles (fix nve/sphere and the like) fall apart or are integrated twice.
+// rigid/rod, those of its group) moved by an integrator of free particles (fix nve/sphere and the
+// like) fall apart or are integrated twice.
 void PairGranImpulse::refuse_integrated_rod_atoms()
 {
   if (!atom->molecule_flag) return;
@@ -223,8 +224,7 @@ void PairGranImpulse::refuse_integrated_rod_atoms()
 void PairGranImpulse::check_deck()
 {
   const double diameter = 2.0 * largest_type_radius();
-  double acceleration = 0.0;
-  for (const ImpulseWall *wall : walls) acceleration = std::max(acceleration, wall->peak_acceleration());
+  const double acceleration = largest_wall_acceleration();
   bodies.begin_step();
   const double gravity = bodies.largest_gravity();
   // lj units measure lengths in grain diameters (LAMMPS's granular decks: d = 1, g = 1). Grains a
@@ -386,7 +386,12 @@ void PairGranImpulse::solve()
 // What sets the speed below which contacts rest: gravity, the walls' vibration.
 double PairGranImpulse::largest_acceleration() const
 {
-  double largest = bodies.largest_gravity();
+  return std::max(bodies.largest_gravity(), largest_wall_acceleration());
+}
+
+double PairGranImpulse::largest_wall_acceleration() const
+{
+  double largest = 0.0;
   for (const ImpulseWall *wall : walls) largest = std::max(largest, wall->peak_acceleration());
   return largest;
 }
@@ -497,7 +502,6 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
   MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
   order = static_cast<ContactOrder>(order_code);
-
 }
 
 void *PairGranImpulse::extract(const char *name, int &dim)

@@ -82,6 +82,7 @@ class PairGranImpulse : public Pair {
   void report(const SolveDiagnostics::Health &health, const SolveDiagnostics::Energies &energies);
   double largest_type_radius() const;
   double largest_acceleration() const;
+  double largest_wall_acceleration() const;
 
   // settings
   ActiveGrain::ContactSolver::Settings solver_settings;

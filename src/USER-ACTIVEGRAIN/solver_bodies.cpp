@@ -81,7 +81,6 @@ Vec3 SolverBodies::atom_velocity_at(int i, const Vec3 &point) const
   return Vec3(atom->v[i]) + cross(Vec3(atom->omega[i]), point - Vec3(atom->x[i]));
 }
 
-// None for an atom held by fix freeze.
 double SolverBodies::largest_gravity() const
 {
   double largest = 0.0;
@@ -89,6 +88,7 @@ double SolverBodies::largest_gravity() const
   return largest;
 }
 
+// None for an atom held by fix freeze.
 Vec3 SolverBodies::gravity_of_atom(int i) const
 {
   Vec3 a;
