@@ -1,0 +1,62 @@
+"""Sphinx configuration of ActiveGrain's manual.
+
+Built as LAMMPS builds its own manual, with Debian 12's python3-sphinx and python3-myst-parser
+(for the Markdown pages); CI builds it with warnings as errors:
+
+    python3 -m sphinx -W -b html docs build/docs-html
+
+Style pages keep LAMMPS's format. Links to LAMMPS's own pages use the role
+:lammps:`fix gravity <fix_gravity>` (an external link to docs.lammps.org); links between our
+pages use :doc:. ``.. code-block:: LAMMPS`` is highlighted by the small lexer below.
+"""
+from pygments.lexer import RegexLexer, bygroups
+from pygments.token import Comment, Keyword, Name, Number, String, Text
+
+project = "ActiveGrain"
+author = "the ActiveGrain developers"
+copyright = "the ActiveGrain developers"
+
+extensions = ["sphinx.ext.mathjax", "sphinx.ext.extlinks", "myst_parser"]
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+root_doc = "index"
+exclude_patterns = ["_build", "figures/**/*.txt"]
+
+# LAMMPS's manual, one page per command: :lammps:`fix gravity <fix_gravity>`.
+extlinks = {"lammps": ("https://docs.lammps.org/%s.html", "%s")}
+
+# Markdown pages: headings get the anchors GitHub gives them (validation.md#the-full-size-channel).
+myst_heading_anchors = 3
+myst_enable_extensions = ["dollarmath"]
+
+html_theme = "alabaster"
+html_theme_options = {"nosidebar": False, "page_width": "1100px"}
+html_static_path = []
+html_show_sourcelink = False
+pygments_style = "default"
+highlight_language = "none"
+
+
+class LAMMPSLexer(RegexLexer):
+    """Input decks: the command at the start of a line, comments, variables, numbers."""
+
+    name = "LAMMPS"
+    aliases = ["lammps"]
+    filenames = ["in.*"]
+
+    tokens = {
+        "root": [
+            (r"\s*#.*?$", Comment),
+            (r"^(\s*)([a-z_][a-z0-9_/]*)", bygroups(Text, Keyword)),
+            (r"\$\{[^}]*\}|\$\([^)]*\)|\$[A-Za-z]", Name.Variable),
+            (r"\b[vcf]_[A-Za-z0-9_\[\]]+", Name.Variable),
+            (r'"[^"]*"|\'[^\']*\'', String),
+            (r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\b", Number),
+            (r"&\s*$", Text),
+            (r"\S+", Text),
+            (r"\s+", Text),
+        ],
+    }
+
+
+def setup(app):
+    app.add_lexer("LAMMPS", LAMMPSLexer)
