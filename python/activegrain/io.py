@@ -29,7 +29,10 @@ from .geometry import Box
 class Frame:
     """One snapshot. Arrays are sorted by atom id; lengths in the dump's units
     divided by ``length_unit`` (see :func:`read_dump`). ``body``: the atoms' rod IDs
-    (fix rigid/rod's body ID, 0 for beads) when the dump has them, else None."""
+    (fix rigid/rod's body ID, 0 for beads) when the dump has them, else None.
+    ``length_unit``: the frame's unit of length in the dump's units, which for the decks' SI
+    dumps are metres (1e-3 for a frame read with ``length_unit=1e-3``), kept for conversions
+    (:func:`to_universe`)."""
     step: int
     time: float
     box: Box
@@ -40,6 +43,7 @@ class Frame:
     pos: np.ndarray          # (N, 3)
     vel: np.ndarray = None   # (N, 3) or None
     body: np.ndarray = None  # (N,) or None
+    length_unit: float = 1.0
 
     @property
     def rod_of_atom(self):
@@ -64,7 +68,8 @@ class Frame:
     def scaled(self, factor):
         """A copy with every length (and velocity) multiplied by ``factor``."""
         return replace(self, box=self.box.scaled(factor), radius=self.radius * factor,
-                       pos=self.pos * factor, vel=None if self.vel is None else self.vel * factor)
+                       pos=self.pos * factor, vel=None if self.vel is None else self.vel * factor,
+                       length_unit=self.length_unit / factor)
 
     def to_ase(self):
         """The frame as an :class:`ase.Atoms` (cell, pbc, ``mol``, ``radius`` and, when
@@ -276,13 +281,73 @@ def write_dump(path, frames, append=False):
             np.savetxt(f, table, fmt=fmt)
 
 
-def to_universe(frames):
-    """The frames as an in-memory :class:`MDAnalysis.Universe`, for analyses of one's own with
-    MDAnalysis: one residue per rod (resname ``ROD``, resid its rod ID, the ``body`` or ``mol`` of
-    its atoms) and one per bead (``BEAD``, resid 0), atom ``ids``, ``types`` and ``radii``, the
-    box as ``dimensions``, one trajectory frame per frame (``u.select_atoms("resname ROD")``,
-    ``u.residues``). MDAnalysis keeps positions as float32: the measurements of this package
-    work on the frames themselves, in double precision."""
+# The decks' densities (kg/m^3) by atom type: rods are types 1 (tail), 2 (body) and 3 (nose) of
+# brass, beads type 4 of aluminium (examples/rods-and-beads/in.create, examples/minimal/in.minimal).
+DECK_DENSITIES = {1: 8500.0, 2: 8500.0, 3: 8500.0, 4: 2700.0}
+
+_AMU = 1.66053906660e-27        # kg
+_ANGSTROM = 1e-10               # m
+_PS = 1e-12                     # s
+
+
+def atom_masses(frame, densities=None):
+    """Per atom of an SI frame (any ``length_unit``), its mass in kg, as the decks give it.
+
+    A bead's mass is its density times its sphere's volume (``set ... density``). A rod's atoms
+    carry rod_template's point masses: the slabs of the solid tapered rod (a frustum) nearest to
+    each sphere, tilted so that they sum to the solid's mass and centre on its centre of mass
+    (:func:`activegrain.rods.frustum_point_masses`, rebuilt from the dumped radii and positions;
+    the same as LAMMPS's per-atom masses to the dump's precision). ``densities``: {atom type:
+    density in kg/m^3}, default :data:`DECK_DENSITIES` (rod types 1-3 brass 8500, bead type 4
+    aluminium 2700); a rod's atoms must share one density.
+    """
+    from .rods import frustum_point_masses
+    densities = DECK_DENSITIES if densities is None else densities
+    missing = sorted(set(np.unique(frame.types).tolist()) - set(densities))
+    if missing:
+        raise ValueError(f"no density for atom type(s) {', '.join(map(str, missing))} "
+                         f"(densities given for types {', '.join(map(str, sorted(densities)))})")
+    unit = frame.length_unit                      # metres per frame length
+    rho = np.array([densities[int(t)] for t in frame.types], float)
+    radius = frame.radius * unit
+    mass = rho * 4.0 / 3.0 * np.pi * radius ** 3
+    rod = frame.rod_of_atom
+    for rid in np.unique(rod[rod > 0]):
+        atoms = np.flatnonzero(rod == rid)
+        if np.ptp(rho[atoms]) > 0:
+            raise ValueError(f"rod {rid}: its atoms' types {sorted(set(frame.types[atoms].tolist()))} "
+                             "have different densities")
+        x = frame.pos[atoms[0]] + frame.box.minimum_image(frame.pos[atoms] - frame.pos[atoms[0]])
+        d = x - x.mean(axis=0)
+        axis = np.linalg.svd(d, full_matrices=False)[2][0]
+        mass[atoms] = frustum_point_masses(d @ axis * unit, radius[atoms], rho[atoms[0]])
+    return mass
+
+
+def to_universe(frames, dt=None, densities=None, shift_to_origin=False):
+    """The frames of an SI dump (metres, seconds, kg; any ``length_unit``) as an in-memory
+    :class:`MDAnalysis.Universe`, in MDAnalysis's units: positions, radii and box in Angstrom,
+    velocities in Angstrom/ps, masses in amu, time in ps.
+
+    * Topology: one residue per rod (resname ``ROD``, resid its rod ID, the ``body`` or ``mol``
+      of its atoms) and one per bead (``BEAD``, resid 0); atom ``ids``, ``types``, ``radii`` and
+      ``masses`` (``u.select_atoms("resname ROD")``, ``u.residues``, ``center_of_mass()``).
+    * Masses (the dumps have no mass column) from the first frame's radii and ``densities``,
+      {atom type: kg/m^3}, default the decks' (types 1-3 brass rods 8500, type 4 aluminium
+      beads 2700): beads are solid spheres, rod atoms get rod_template's share of their solid
+      tapered rod, as in the deck (:func:`atom_masses`).
+    * Time: frame ``k`` is at ``step_k * dt`` (``dt``: the deck's time step in seconds, its
+      ``timestep``), converted to ps; the frames must be equally spaced in steps. Without ``dt``
+      the time of a frame is unknown: a warning says so and the trajectory's times are the MD
+      step numbers, not ps.
+    * Positions are the dump's, converted to Angstrom, not shifted: MDAnalysis's box spans
+      [0, L) on each axis while the decks' boxes may start elsewhere (the plates' box below
+      z = 0). ``shift_to_origin=True`` subtracts the box's lower corner from every position,
+      so that they lie in MDAnalysis's box (for its wrapping and distance functions).
+    * One trajectory frame per frame, velocities where the dump has them. MDAnalysis keeps
+      positions as float32 (1e-7 of the box): the measurements of this package work on the
+      frames themselves, in double precision.
+    """
     with warnings.catch_warnings():
         # MDAnalysis 2.4 imports the deprecated xdrlib after installing its own warning filters,
         # which override ours: import it first, here, so that the warning is not printed.
@@ -294,6 +359,8 @@ def to_universe(frames):
         import MDAnalysis
         from MDAnalysis.coordinates.memory import MemoryReader
     frames = list(frames)
+    if not frames:
+        raise ValueError("to_universe: no frames")
     first = frames[0]
     rod = first.rod_of_atom
     # A residue per rod, and per bead (told apart by the negated atom ID).
@@ -301,14 +368,35 @@ def to_universe(frames):
     keys, resindex = np.unique(key, return_inverse=True)
     u = MDAnalysis.Universe.empty(len(first.ids), n_residues=len(keys), atom_resindex=resindex,
                                   trajectory=True)
+    angstrom = lambda fr: fr.length_unit / _ANGSTROM          # Angstrom per frame length
     u.add_TopologyAttr("ids", first.ids)
     u.add_TopologyAttr("types", first.types.astype(str))
-    u.add_TopologyAttr("radii", first.radius)
+    u.add_TopologyAttr("radii", first.radius * angstrom(first))
+    u.add_TopologyAttr("masses", atom_masses(first, densities) / _AMU)
     u.add_TopologyAttr("resids", np.maximum(keys, 0))
     u.add_TopologyAttr("resnames", np.where(keys > 0, "ROD", "BEAD"))
-    positions = np.stack([fr.pos - fr.box.lo for fr in frames])
-    dimensions = np.array([list(fr.box.lengths) + [90.0, 90.0, 90.0] for fr in frames])
-    u.load_new(positions, format=MemoryReader, order="fac", dimensions=dimensions)
+    positions = np.stack([((fr.pos - fr.box.lo) if shift_to_origin else fr.pos) * angstrom(fr)
+                          for fr in frames])
+    dimensions = np.array([list(np.asarray(fr.box.lengths) * angstrom(fr)) + [90.0, 90.0, 90.0]
+                           for fr in frames])
+    velocities = None
+    if all(fr.vel is not None for fr in frames):
+        # m/s = 1e10 Angstrom / 1e12 ps
+        velocities = np.stack([fr.vel * fr.length_unit / _ANGSTROM * _PS for fr in frames])
+    steps = np.array([fr.step for fr in frames], float)
+    spacing = np.diff(steps)
+    if len(spacing) and not np.allclose(spacing, spacing[0]):
+        raise ValueError(f"to_universe: frames at steps {steps[:4].astype(int).tolist()}...: "
+                         "MDAnalysis needs equally spaced frames")
+    if dt is None:
+        warnings.warn("to_universe: no dt (the deck's time step, in s) given: the trajectory's "
+                      "times are MD step numbers, not ps", stacklevel=2)
+        scale = 1.0
+    else:
+        scale = dt / _PS
+    u.load_new(positions, format=MemoryReader, order="fac", dimensions=dimensions,
+               velocities=velocities, dt=(spacing[0] if len(spacing) else 1.0) * scale,
+               time_offset=steps[0] * scale)
     return u
 
 

@@ -243,3 +243,40 @@ def disc_samples(centres, radii, spacing):
     s, w, weight = chain_samples([0.0], [1.0], 2.0 / n)  # unit disc template
     pts = centres[:, None, :] + radii[:, None, None] * np.stack([s, w], axis=-1)[None]
     return pts.reshape(-1, 2), (radii[:, None] ** 2 * weight[None]).ravel()
+
+
+def frustum_point_masses(axial, radii, density):
+    """The point masses rod_template gives a rod's spheres, from their axial positions and radii.
+
+    rod_template (docs/rod_template.rst) makes each sphere's radius the local radius of a solid
+    frustum whose end spheres touch its end faces, and gives each sphere the mass of the frustum
+    slab nearest to it (between the midpoints to its neighbours, the end ones out to the faces),
+    tilted linearly along the axis so that the masses sum to the solid's mass and their centre
+    is the solid's centre of mass. The frustum is rebuilt here from the spheres (radius linear
+    in the axial position, faces one end radius beyond the end centres), so that the masses are
+    those of the deck for a rod read back from a dump. ``axial`` in any order and direction;
+    masses in ``density`` times the cube of the length unit of ``axial`` and ``radii``.
+    """
+    s, r = np.asarray(axial, float), np.asarray(radii, float)
+    order = np.argsort(s, kind="stable")
+    slope = np.polyfit(s, r, 1)[0] if np.ptp(s) > 0 else 0.0
+    if slope > 0:                      # measure x from the tail (the wide end)
+        order = order[::-1]
+    x = np.abs(s[order] - s[order[0]]) + r[order[0]]
+    rr = r[order]
+    length = x[-1] + rr[-1]
+    k = -abs(slope)
+    a = rr[0] - k * x[0]               # radius at the tail face
+    b = a + k * length                 # at the nose face
+    volume = np.pi * length * (a * a + a * b + b * b) / 3.0
+    mass = density * volume
+    com = length * (a * a + 2 * a * b + 3 * b * b) / (4 * (a * a + a * b + b * b))
+    edges = np.concatenate([[0.0], 0.5 * (x[1:] + x[:-1]), [length]])
+    r0, r1 = a + k * edges[:-1], a + k * edges[1:]
+    m = density * np.pi * np.diff(edges) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0
+    x_w = np.sum(m * x) / mass
+    spread = np.sum(m * (x - x_w) ** 2)
+    m = m * (1.0 + mass * (com - x_w) / spread * (x - x_w))
+    out = np.empty_like(m)
+    out[order] = m
+    return out

@@ -26,7 +26,8 @@ def rod_spheres(length=ROD_LENGTH, tail=ROD_TAIL, nose=ROD_NOSE, n_spheres=7):
 
 def make_frame(box, bead_xy=(), bead_r=0.5, rod_centres=(), rod_axes=(), rod=None,
                bead_vel=None, rod_vel=None, step=0, time=None, z=0.5):
-    """Assemble a :class:`Frame`: beads (mol 0, type 1) then rods (mol 1.., type 2).
+    """Assemble a :class:`Frame`: beads (mol 0, type 1) then rods (mol 1.., type 2), lengths in
+    bead diameters of 1 mm (``length_unit`` 1e-3: ``frame.scaled(1e-3)`` is in metres).
 
     ``rod``: (s, r) from :func:`rod_spheres`; ``bead_vel``/``rod_vel``: (n, 2) velocities
     (rod velocity given to all its atoms), or None for a dump without velocities.
@@ -50,7 +51,7 @@ def make_frame(box, bead_xy=(), bead_r=0.5, rod_centres=(), rod_axes=(), rod=Non
         vel = np.column_stack([v2, np.zeros(len(v2))])
     n = nb + nr * k
     return Frame(step, float(step if time is None else time), box, np.arange(1, n + 1), mol,
-                 np.where(mol > 0, 2, 1), radius, pos, vel)
+                 np.where(mol > 0, 2, 1), radius, pos, vel, length_unit=1e-3)   # d = 1 mm
 
 
 def channel_box(length=249.0, width=31.0, height=1.12):

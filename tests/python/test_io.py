@@ -133,9 +133,9 @@ def test_frames_as_an_mdanalysis_universe():
     box = S.channel_box(40, 10)
     beads = S.lattice_beads(0, 40, 0, 10, 2.0)
     centres, axes = S.random_rods(3, (5, 35, 3, 7), rng)
-    frames = [S.make_frame(box, beads, 0.5, centres + shift, axes, step=100 * k)
+    frames = [S.make_frame(box, beads, 0.5, centres + shift, axes, step=100 * k).scaled(1e-3)
               for k, shift in enumerate((0.0, 0.5))]
-    u = to_universe(frames)
+    u = to_universe(frames, dt=1e-4, densities={1: 2700, 2: 8500})
     rods = frames[0].rods()
     assert u.atoms.n_atoms == len(frames[0].ids)
     assert len(u.select_atoms("resname ROD").residues) == len(rods.ids) == 3
@@ -143,8 +143,97 @@ def test_frames_as_an_mdanalysis_universe():
     assert sorted(u.select_atoms("resname ROD").residues.resids) == sorted(rods.ids)
     assert u.trajectory.n_frames == 2
     u.trajectory[1]
-    assert np.allclose(u.atoms.positions, frames[1].pos - frames[1].box.lo, atol=1e-4)
-    assert np.allclose(u.dimensions[:3], frames[1].box.lengths)
+    assert np.allclose(u.atoms.positions, frames[1].pos * 1e10, rtol=1e-6)     # m -> Angstrom
+    assert np.allclose(u.dimensions[:3], np.asarray(frames[1].box.lengths) * 1e10)
+
+
+# One rod of examples/minimal/in.minimal (rod_template rod length 4.5e-3 tail 1.1e-3 nose 0.7e-3
+# spheres 9 density 8500, types 1 2 3) and two aluminium beads (d 1 mm, type 4), with the masses
+# LAMMPS gave them (a dump of that deck with the mass column): columns id mol type radius mass x y z.
+DECK_ATOMS = """\
+1 1 1 0.000526596 5.90267e-06 0.00319644 0.005 0.00056
+2 1 2 0.000506556 3.16011e-06 0.00364733 0.005 0.00056
+3 1 2 0.000486517 2.88522e-06 0.00409822 0.005 0.00056
+4 1 2 0.000466477 2.62504e-06 0.00454911 0.005 0.00056
+5 1 2 0.000446437 2.37926e-06 0.005 0.005 0.00056
+6 1 2 0.000426398 2.14757e-06 0.00545089 0.005 0.00056
+7 1 2 0.000406358 1.92968e-06 0.00590178 0.005 0.00056
+8 1 2 0.000386319 1.72527e-06 0.00635267 0.005 0.00056
+9 1 3 0.000366279 1.97932e-06 0.00680356 0.005 0.00056
+37 0 4 0.0005 1.41372e-06 0.000625 0.000625 0.0005125
+38 0 4 0.0005 1.41372e-06 0.001875 0.000625 0.0005125
+"""
+
+
+def deck_dump(path, steps=(20000, 21000, 22000), rotate=0.0):
+    """A dump of DECK_ATOMS in the decks' format (SI, box from z = -1 mm, velocities, body), its
+    rod turned by ``rotate`` about its centre; returns the LAMMPS masses."""
+    table = np.loadtxt(DECK_ATOMS.splitlines())
+    xy = table[:, 5:7].copy()
+    c = np.array([0.005, 0.005])
+    rod = table[:, 2] < 4
+    rot = np.array([[np.cos(rotate), -np.sin(rotate)], [np.sin(rotate), np.cos(rotate)]])
+    xy[rod] = c + (xy[rod] - c) @ rot.T
+    with open(path, "w") as f:
+        for k, step in enumerate(steps):
+            f.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n{len(table)}\n"
+                    "ITEM: BOX BOUNDS pp pp ff\n0 0.02\n0 0.02\n-0.001 0.0022\n"
+                    "ITEM: ATOMS id mol type radius x y z vx vy vz body\n")
+            for row, (x, y) in zip(table, xy):
+                f.write(f"{int(row[0])} {int(row[1])} {int(row[2])} {row[3]:.9g} {x + 1e-4 * k:.9g} "
+                        f"{y:.9g} {row[7]:.9g} 0.003 -0.002 0.001 {5 if row[2] < 4 else 0}\n")
+    return table[:, 4]
+
+
+@pytest.mark.parametrize("rotate", [0.0, 2.0])
+def test_deck_masses_from_radii_and_densities(tmp_path, rotate):
+    """Beads: 2700 kg/m^3 spheres; rod atoms: rod_template's shares of the brass frustum, as LAMMPS."""
+    from activegrain.io import atom_masses
+    lammps = deck_dump(tmp_path / "d.dump", rotate=rotate)
+    for unit in (1.0, 1e-3):
+        fr = read_frame(str(tmp_path / "d.dump"), 0, length_unit=unit)
+        m = atom_masses(fr)
+        np.testing.assert_allclose(m, lammps, rtol=2e-5)
+    assert m[:9].sum() == pytest.approx(24.73e-6, rel=1e-3)    # docs/rod_template.rst's 24.73 mg
+    m2 = atom_masses(fr, densities={1: 1000, 2: 1000, 3: 1000, 4: 1000})
+    np.testing.assert_allclose(m2 / m, [1 / 8.5] * 9 + [1 / 2.7] * 2)
+    with pytest.raises(ValueError, match="no density for atom type.* 4"):
+        atom_masses(fr, densities={1: 8500, 2: 8500, 3: 8500})
+    with pytest.raises(ValueError, match="rod 5: .*different densities"):
+        atom_masses(fr, densities={1: 8500, 2: 8500, 3: 7000, 4: 2700})
+
+
+def test_universe_in_mdanalysis_units(tmp_path):
+    """Angstrom, Angstrom/ps, amu and ps; positions as in the dump unless shifted on request."""
+    lammps = deck_dump(tmp_path / "d.dump")
+    frames = list(read_dump(str(tmp_path / "d.dump"), length_unit=1e-3))
+    u = to_universe(frames, dt=1e-4)
+    np.testing.assert_allclose(u.atoms.masses, lammps / 1.66053906660e-27, rtol=2e-5)
+    assert [ts.time for ts in u.trajectory] == pytest.approx([2.0e12, 2.1e12, 2.2e12])   # steps x 1e-4 s
+    assert u.trajectory.dt == pytest.approx(0.1e12)
+    u.trajectory[2]
+    ref = read_frame(str(tmp_path / "d.dump"), 2)
+    np.testing.assert_allclose(u.atoms.positions, ref.pos * 1e10, rtol=1e-6)
+    assert u.atoms.positions[:, 2].min() > 0 and u.atoms.positions[0, 2] == pytest.approx(5.6e6)
+    np.testing.assert_allclose(u.atoms.velocities, np.tile([3e-5, -2e-5, 1e-5], (11, 1)), rtol=1e-6)   # 1 m/s = 0.01 A/ps
+    np.testing.assert_allclose(u.dimensions, [2e8, 2e8, 3.2e7, 90, 90, 90], rtol=1e-6)
+    np.testing.assert_allclose(u.atoms.radii[-1], 5e6)
+    shifted = to_universe(frames, dt=1e-4, shift_to_origin=True)
+    np.testing.assert_allclose(shifted.atoms.positions[:, 2], ref.pos[:, 2] * 1e10 + 1e7, rtol=1e-6)
+    com = u.select_atoms("resname ROD").center_of_mass()          # the solid rod's, 1.922 mm from the tail
+    tail_face = (ref.pos[0] - [ref.radius[0], 0, 0]) * 1e10
+    assert com[0] - tail_face[0] == pytest.approx(1.922e7, rel=1e-3)
+
+
+def test_universe_without_dt_says_its_times_are_steps(tmp_path):
+    deck_dump(tmp_path / "d.dump")
+    frames = list(read_dump(str(tmp_path / "d.dump")))
+    with pytest.warns(UserWarning, match="no dt .*MD step numbers, not ps"):
+        u = to_universe(frames)
+    assert [ts.time for ts in u.trajectory] == [20000, 21000, 22000]
+    deck_dump(tmp_path / "e.dump", steps=(0, 1000, 3000))
+    with pytest.raises(ValueError, match="equally spaced"):
+        to_universe(read_dump(str(tmp_path / "e.dump")), dt=1e-4)
 
 
 def three_frames(path):
