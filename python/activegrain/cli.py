@@ -2,8 +2,9 @@
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
-``--length-unit`` (e.g. 1e-3 to work in bead diameters from a dump in metres) and
-``--timestep`` (time per MD step).
+``--length-unit`` (1e-3 to work in bead diameters d from the example decks' dumps, in metres)
+and ``--timestep`` (the deck's time step in seconds, 1e-4 in the example decks; without it,
+times are MD steps). Each command's ``--help`` gives its options, their defaults and examples.
 
 A bad argument or input prints one line, ``ERROR: activegrain COMMAND: ...`` (exit status 2 for
 a command line that does not parse, else 1); a dump that ends within a frame (a killed
@@ -16,6 +17,7 @@ import pathlib
 import shutil
 import subprocess
 import sys
+import textwrap
 import warnings
 
 import numpy as np
@@ -24,21 +26,53 @@ from . import _env, analysis, io, motility, theory
 from .geometry import geometry_from_box
 
 
-def _add_dump_args(p):
-    p.add_argument("dump", help="LAMMPS text dump (id mol type radius x y z [vx vy vz])")
-    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
-    p.add_argument("--centre", type=float, nargs=2, help="annulus centre (default: box centre)")
-    p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius")
-    p.add_argument("--r-out", type=float, help="annulus outer radius")
-    p.add_argument("--length-unit", type=float, default=1.0, help="divide lengths by this")
-    p.add_argument("--timestep", type=float, default=1.0, help="time per MD step")
+# The model parameters of activegrain.theory.LinearParameters (docs/continuum.rst, the paper's
+# eqs. 1-2): currents J_rho = -D_rho grad rho - D_rho_sigma grad sigma + alpha rho P,
+# J_sigma = -D_sigma grad sigma - D_sigma_rho grad rho + u0 sigma P, (a - K lap) P = A grad rho + B grad sigma.
+_PARAMETER_HELP = {
+    "rho0": "mean bead density", "sigma0": "mean rod density",
+    "D_rho": "bead diffusivity", "D_sigma": "rod diffusivity",
+    "D_rho_sigma": "beads' cross-diffusion down the rod gradient",
+    "D_sigma_rho": "rods' cross-diffusion down the bead gradient",
+    "alpha": "bead current along P per bead (alpha rho P)", "u0": "rod speed along P (u0 sigma P)",
+    "A": "polarization by the bead gradient (A grad rho)", "B": "polarization by the rod gradient (B grad sigma)",
+    "a": "P's restoring rate, > 0 (the isotropic phase)", "K": "P's stiffness (K lap P)"}
+
+# continuum's defaults: the non-reciprocal set of docs/continuum.rst ("Travelling patterns"),
+# continuum_figures.NON_RECIPROCAL.
+CONTINUUM_DEFAULTS = dict(rho0=1.0, sigma0=0.5, D_rho=0.2, D_sigma=0.2, D_rho_sigma=1.0, D_sigma_rho=0.0,
+                          alpha=1.0, u0=1.0, A=1.0, B=0.0, a=1.0, K=1.0)
+
+
+def _add_dump_args(p, one_frame=False):
+    p.add_argument("dump", help="LAMMPS text dump (id mol type radius x y z [vx vy vz] [body])")
+    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"],
+                   help="cell geometry (auto: from the box's boundary flags; an annulus needs --r-out)")
+    p.add_argument("--centre", type=float, nargs=2, metavar=("X", "Y"),
+                   help="annulus centre, dump units (default: the box centre)")
+    p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius, dump units")
+    p.add_argument("--r-out", type=float, help="annulus outer radius, dump units")
+    p.add_argument("--length-unit", type=float, default=1.0,
+                   help="divide the dump's lengths by this: 1e-3 gives bead diameters d for the example "
+                        "decks' dumps (metres, d = 1 mm)")
+    p.add_argument("--timestep", type=float, default=None,
+                   help="the deck's time step in seconds (1e-4 in the example decks): times in seconds "
+                        "(default: none, times are MD steps)")
+    if one_frame:
+        p.add_argument("--frame", type=int, default=-1, help="the frame (Python index, -1 = the last)")
+        return
     p.add_argument("--frame", type=int, default=None,
-                   help="only this frame (python index, -1 = last); default all")
-    p.add_argument("--every", type=int, default=None, help="every n-th frame")
+                   help="only this frame (Python index, -1 = the last; default: all frames)")
+    p.add_argument("--every", type=int, default=None, help="every n-th frame (default: every frame)")
+
+
+def _timestep(args):
+    """The time per MD step for reading: --timestep, else 1 (times are then step numbers)."""
+    return 1.0 if args.timestep is None else args.timestep
 
 
 def _frames(args):
-    kw = dict(length_unit=args.length_unit, timestep=args.timestep)
+    kw = dict(length_unit=args.length_unit, timestep=_timestep(args))
     if args.frame is not None:
         return [io.read_frame(args.dump, args.frame, **kw)]
     return list(io.read_dump(args.dump, every=args.every, **kw))
@@ -49,6 +83,14 @@ def _geometry(args, frame):
     return geometry_from_box(frame.box, args.geometry,
                              None if args.centre is None else tuple(np.asarray(args.centre) / u),
                              args.r_in / u, None if args.r_out is None else args.r_out / u)
+
+
+def _span(frames, args):
+    """The frames' time span for a title: "mean over t = 0-2 s (41 frames)"."""
+    unit = " s" if args.timestep is not None else " (MD steps)"
+    if len(frames) == 1:
+        return f"t = {frames[0].time:.4g}{unit}"
+    return f"mean over t = {frames[0].time:.4g}-{frames[-1].time:.4g}{unit} ({len(frames)} frames)"
 
 
 def _print_table(rows, out):
@@ -81,7 +123,9 @@ def cmd_profile(args, out):
         out.write(f"# eq. 5 fit: phi_plus {phi_plus:.6g} ell {ell:.6g} phi0 {phi0:.6g}\n")
     if args.plot:
         from . import plotting
-        plotting.plot_profiles([avg], args.plot, labels=[f"{args.species}, mean of {len(frames)} frame(s)"])
+        label = f"{plotting.SPECIES_LABELS[args.species]}, mean of {len(frames)} frame(s)"
+        plotting.plot_profiles([avg], args.plot, labels=[label], unit=plotting.length_label(frames[0]),
+                               title=_span(frames, args))
 
 
 def cmd_map(args, out):
@@ -97,7 +141,9 @@ def cmd_map(args, out):
                           f"columns x ({xe[0]:g}..{xe[-1]:g}), mean of {len(frames)} frame(s)")
     else:
         from . import plotting
-        plotting.plot_map(xe, ye, phi, args.output, label=f"{args.species} area fraction")
+        plotting.plot_map(xe, ye, phi, args.output, unit=plotting.length_label(frames[0]),
+                          label=f"area fraction of {plotting.SPECIES_LABELS[args.species]}",
+                          title=_span(frames, args))
     out.write(f"wrote {args.output}\n")
 
 
@@ -162,9 +208,8 @@ def cmd_motility(args, out):
 
 def cmd_snapshot(args, out):
     from . import plotting
-    fr = io.read_frame(args.dump, args.frame if args.frame is not None else -1,
-                       length_unit=args.length_unit, timestep=args.timestep)
-    plotting.snapshot(fr, _geometry(args, fr), args.output)
+    fr = io.read_frame(args.dump, args.frame, length_unit=args.length_unit, timestep=_timestep(args))
+    plotting.snapshot(fr, _geometry(args, fr), args.output, seconds=args.timestep is not None)
     out.write(f"wrote {args.output}\n")
 
 
@@ -173,15 +218,16 @@ def cmd_kymograph(args, out):
     frames = _frames(args)
     geom = _geometry(args, frames[0])
     profiles = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_profile(
-        fr, geom, args.coord, args.bins, "beads"))
-    plotting.kymograph([fr.time for fr in frames], profiles, args.output)
+        fr, geom, args.coord, args.bins, args.species))
+    plotting.kymograph([fr.time for fr in frames], profiles, args.output, unit=plotting.length_label(frames[0]),
+                       seconds=args.timestep is not None)
     out.write(f"wrote {args.output}\n")
 
 
 def cmd_movie(args, out):
     from . import plotting
     frames = _frames(args)
-    plotting.movie(frames, args.output, _geometry(args, frames[0]), fps=args.fps)
+    plotting.movie(frames, args.output, _geometry(args, frames[0]), fps=args.fps, seconds=args.timestep is not None)
     out.write(f"wrote {args.output} ({len(frames)} frames)\n")
 
 
@@ -276,47 +322,103 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"ERROR: {name}: {message} (see {self.prog} --help)\n")
 
 
-def build_parser():
-    ap = _Parser(prog="python3 -m activegrain", description=__doc__,
-                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = ap.add_subparsers(dest="command", required=True)
+class _Formatter(argparse.RawDescriptionHelpFormatter):
+    """Descriptions and examples as written; each option's default after its help, where it has
+    one (not for flags, and not for options whose absence the help explains)."""
 
-    p = sub.add_parser("profile", help="area-fraction profile (mean over the frames)")
-    _add_dump_args(p)
-    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
-    p.add_argument("--bins", type=int, default=50)
-    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if ("%(default)" not in text and action.option_strings and action.default is not None
+                and action.default is not False and action.default is not argparse.SUPPRESS
+                and not isinstance(action, argparse._HelpAction)):
+            text += " (default: %(default)s)"
+        return text
+
+
+# The example decks' dumps: SI, the beads' diameter 1 mm, time step 1e-4 s.
+_DUMP_EXAMPLE_ARGS = "--length-unit 1e-3 --timestep 1e-4"
+
+
+def _command(sub, name, summary, description, examples, dump=True, one_frame=False):
+    """A subcommand with its one-line summary (in the command list), description, examples and,
+    for dump commands, the common dump options."""
+    p = sub.add_parser(name, help=summary, description=textwrap.fill(description, 90), formatter_class=_Formatter,
+                       epilog="examples:\n" + "\n".join("  python3 -m activegrain " + e for e in examples))
+    if dump:
+        _add_dump_args(p, one_frame)
+    return p
+
+
+def build_parser():
+    ap = _Parser(prog="python3 -m activegrain", description=__doc__, formatter_class=_Formatter,
+                 epilog="python3 -m activegrain COMMAND --help: the command's options, defaults and examples.")
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    ex = _DUMP_EXAMPLE_ARGS
+
+    p = _command(sub, "profile", "area-fraction profile along a coordinate (mean over the frames)",
+                 "Area fraction covered by the beads, the rods or both (--species) in bins along x, y, r "
+                 "or theta, averaged over the frames; printed as a table (coordinate, area_fraction), "
+                 "optionally drawn (--plot). With --relative-to-layer the coordinate is the distance "
+                 "ahead of each frame's densest rod layer, and --fit fits the paper's eq. 5 "
+                 "exponential to it.",
+                 [f"profile out/channel.dump {ex} --coord x --plot profile.png > profile.txt",
+                  f"profile out/channel.dump {ex} --relative-to-layer --extent 30 --fit 2 25"])
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"],
+                   help="coordinate of the bins (r, theta: about the annulus centre)")
+    p.add_argument("--bins", type=int, default=50, help="number of bins")
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES,
+                   help="whose area: beads, rods, or all (beads and rods)")
     p.add_argument("--count", default="covered", choices=analysis.COUNTS,
                    help="covered: area where it lies; centre: per atom centre, as compute areafrac/chunk")
     p.add_argument("--relative-to-layer", action="store_true",
                    help="profile against the distance ahead of each frame's densest rod layer")
-    p.add_argument("--extent", type=float, help="with --relative-to-layer: largest |distance|")
+    p.add_argument("--extent", type=float, help="with --relative-to-layer: largest |distance| "
+                   "(default: half the cell)")
     p.add_argument("--fit", type=float, nargs=2, metavar=("START", "STOP"),
                    help="with --relative-to-layer: fit eq. 5's exponential between these distances")
-    p.add_argument("--plot", help="also save a plot (png/pdf)")
+    p.add_argument("--plot", help="also draw the profile into this file (png, pdf)")
     p.set_defaults(func=cmd_profile)
 
-    p = sub.add_parser("map", help="2D area-fraction map (png, or .txt/.csv table)")
-    _add_dump_args(p)
-    p.add_argument("--bins", type=int, nargs=2, default=[60, 12], metavar=("NX", "NY"))
-    p.add_argument("--species", default="beads", choices=analysis.SPECIES)
+    p = _command(sub, "map", "2D area-fraction map (png, or .txt/.csv table)",
+                 "Area fraction of the beads, the rods or both on a grid of NX x NY cells, averaged "
+                 "over the frames: an image (png, pdf) or, for a .txt or .csv output, a table "
+                 "(rows y, columns x; NaN outside the cell).",
+                 [f"map out/channel.dump {ex} --bins 60 15 -o map.png",
+                  f"map out/channel.dump {ex} --species all --frame -1 -o map.txt"])
+    p.add_argument("--bins", type=int, nargs=2, default=[60, 12], metavar=("NX", "NY"), help="cells along x and y")
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES,
+                   help="whose area: beads, rods, or all (beads and rods)")
     p.add_argument("--count", default="covered", choices=analysis.COUNTS,
                    help="covered: area where it lies; centre: per atom centre, as compute areafrac/chunk")
-    p.add_argument("-o", "--output", required=True)
+    p.add_argument("-o", "--output", required=True, help="image (png, pdf) or table (.txt, .csv)")
     p.set_defaults(func=cmd_map)
 
-    p = sub.add_parser("polar", help="rod polarization, velocity order, alignment with the bead gradient")
-    _add_dump_args(p)
+    p = _command(sub, "polar", "rods' polar order per frame, velocity order, alignment with the bead gradient",
+                 "Per frame: the rods' polar order P = |<p>| (p: a rod's unit axis from tail to nose, "
+                 "as compute polar/rod), its components, the nematic order S, the order of the rods' "
+                 "and beads' velocities, the rods' alignment with the gradient of the bead area "
+                 "fraction and the bead fraction around the rods. A table, one row per frame.",
+                 [f"polar out/channel.dump {ex} --every 10 > polar.txt",
+                  "polar minimal.dump --length-unit 1e-3 --timestep 1e-4 --frame -1"])
     p.set_defaults(func=cmd_polar)
 
-    p = sub.add_parser("phase", help="classify each frame: isotropic/flock/segregated/condensed/jammed")
-    _add_dump_args(p)
+    p = _command(sub, "phase", "classify each frame: isotropic, flock, segregated, condensed or jammed",
+                 "Classify each frame from measured observables (activegrain.analysis.classify_phase): "
+                 "jammed (dense and arrested), condensed (a polar rod layer with denser beads ahead "
+                 "holds most rods), segregated, flock (polar and advancing) or isotropic; a table with "
+                 "the phase and its observables, one row per frame.",
+                 [f"phase out/channel.dump {ex} --every 10 > phase.txt",
+                  f"phase run/box.dump {ex} --geometry box --every 2 --lag 1"])
     p.add_argument("--lag", type=int, default=1,
                    help="bead mobility (jammed) and rod drift (flock) against the frame this many frames earlier (0: none)")
     p.set_defaults(func=cmd_phase)
 
-    p = sub.add_parser("condensate", help="annulus: the dense arc, its drift round the ring, the rods pressing on its ends")
-    _add_dump_args(p)
+    p = _command(sub, "condensate", "annulus: the dense arc, its drift round the ring, the rods pressing on its ends",
+                 "In an annulus: per frame, the arc of sectors where the bead area fraction exceeds "
+                 "--threshold, its width, the fractions inside and outside it, the rods pressing on "
+                 "its two ends and the drift of its beads since an earlier frame.",
+                 [f"condensate run/annulus.dump {ex} --geometry annulus --centre 0 0 --r-in 15e-3 "
+                  "--r-out 28e-3"])
     p.add_argument("--threshold", type=float, default=0.8, help="bead area fraction of a dense sector")
     p.add_argument("--sectors", type=int, default=72, help="angular sectors round the ring")
     p.add_argument("--lag", type=int, default=1, help="drift against the frame this many frames earlier")
@@ -324,44 +426,74 @@ def build_parser():
                    help="rods pressing on an end: centres within this many rod lengths of it")
     p.set_defaults(func=cmd_condensate)
 
-    p = sub.add_parser("motility", help="rod speed along the axis, MSD fit, persistence time")
-    _add_dump_args(p)
+    p = _command(sub, "motility", "rods' speed along their axes, mean square displacement, persistence time",
+                 "Track the rods over the frames: their speed along their own axes (mean and spread), "
+                 "a persistent random walk fitted to their mean square displacement, and the heading "
+                 "correlation time; printed as JSON. Needs frames close enough that rods move less "
+                 "than half the box between them.",
+                 [f"motility out/rod.dump {ex}",
+                  f"motility out/rod.dump {ex} --from-positions --max-lag 200"])
     p.add_argument("--from-positions", action="store_true",
                    help="speeds from centre displacements between frames, not dumped velocities")
-    p.add_argument("--max-lag", type=int, help="largest lag (frames) for MSD and correlation")
+    p.add_argument("--max-lag", type=int, help="largest lag (frames) for MSD and correlation "
+                   "(default: half the frames)")
     p.set_defaults(func=cmd_motility)
 
-    p = sub.add_parser("snapshot", help="draw one frame")
-    _add_dump_args(p)
-    p.add_argument("-o", "--output", required=True)
+    p = _command(sub, "snapshot", "draw one frame: rods tapered, coloured by heading, nose marked; the polar order",
+                 "Draw one frame from above: beads grey, rods as their tapered shapes coloured by "
+                 "heading (the colour wheel beside it is the key) with the nose, the narrow leading "
+                 "end, marked by a dot; the title gives the time (with --timestep, in seconds), the "
+                 "number of rods and their polar order P = |<p>|. Axes in bead diameters d when "
+                 "--length-unit is the bead diameter (1e-3 for the example decks).",
+                 [f"snapshot out/channel.dump {ex} --frame -1 -o snapshot.png",
+                  f"snapshot minimal.dump {ex} --frame -1 -o snapshot.png"], one_frame=True)
+    p.add_argument("-o", "--output", required=True, help="image file (png, pdf, svg)")
     p.set_defaults(func=cmd_snapshot)
 
-    p = sub.add_parser("kymograph", help="bead profile against time")
-    _add_dump_args(p)
-    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"])
-    p.add_argument("--bins", type=int, default=100)
-    p.add_argument("-o", "--output", required=True)
+    p = _command(sub, "kymograph", "area-fraction profile against time",
+                 "The area fraction of the beads, the rods or both (--species) in bins along a "
+                 "coordinate, frame by frame: an image with the coordinate across and time (with "
+                 "--timestep, in seconds) up.",
+                 [f"kymograph out/channel.dump {ex} --coord x -o kymograph.png",
+                  f"kymograph out/channel.dump {ex} --species all --every 5 -o kymograph.png"])
+    p.add_argument("--coord", default="x", choices=["x", "y", "r", "theta"],
+                   help="coordinate of the bins (r, theta: about the annulus centre)")
+    p.add_argument("--bins", type=int, default=100, help="number of bins")
+    p.add_argument("--species", default="beads", choices=analysis.SPECIES,
+                   help="whose area: beads, rods, or all (beads and rods)")
+    p.add_argument("-o", "--output", required=True, help="image file (png, pdf)")
     p.set_defaults(func=cmd_kymograph)
 
-    p = sub.add_parser("movie", help="animate the frames (.gif; .mp4 needs ffmpeg)")
-    _add_dump_args(p)
-    p.add_argument("-o", "--output", required=True)
-    p.add_argument("--fps", type=int, default=10)
+    p = _command(sub, "movie", "animate the frames as snapshots (.gif; .mp4 needs ffmpeg)",
+                 "Animate the frames, each drawn as the snapshot command draws it.",
+                 [f"movie out/channel.dump {ex} --every 4 -o channel.gif"])
+    p.add_argument("-o", "--output", required=True, help=".gif (Pillow) or .mp4 (ffmpeg)")
+    p.add_argument("--fps", type=int, default=10, help="frames per second")
     p.set_defaults(func=cmd_movie)
 
-    p = sub.add_parser("convert", help="write the frames as extended XYZ (through ase)")
-    _add_dump_args(p)
-    p.add_argument("-o", "--output", required=True)
+    p = _command(sub, "convert", "write the frames as extended XYZ (through ase), for OVITO and VMD",
+                 "Write the frames as extended XYZ through ase: cell, periodicity, positions (shifted "
+                 "so that the box starts at 0, as ase's cell does), velocities, and per atom its "
+                 "molecule ID, radius and rod (body) ID.",
+                 [f"convert out/channel.dump {ex} -o channel.extxyz"])
+    p.add_argument("-o", "--output", required=True, help="extended XYZ file")
     p.set_defaults(func=cmd_convert)
 
-    p = sub.add_parser("theory", help="linear stability (growth) or moving point force (pointforce)")
-    p.add_argument("model", choices=["growth", "pointforce"])
+    p = _command(sub, "theory", "the paper's linear theory: growth rates (growth) or a moving point force (pointforce)",
+                 "growth: the growth rates of the uniform rod-bead mixture, the condensation and "
+                 "non-reciprocity conditions and the fastest mode (paper eqs. 1-2; --full for the "
+                 "unexpanded response; docs/continuum.rst). pointforce: the bead density ahead of "
+                 "a point force f moving at v0 through beads of the hard-disk equation of state "
+                 "(paper eqs. 3-5): rho+, rho- and the decay length l+.",
+                 ["theory growth --D_rho_sigma 0.5 --B -0.1 --plot growth.png",
+                  "theory pointforce --f 2 --rho0 0.6 --plot pointforce.png"], dump=False)
+    p.add_argument("model", choices=["growth", "pointforce"], help="which calculation")
     for name, fld in theory.LinearParameters.__dataclass_fields__.items():
         p.add_argument(f"--{name}", type=float, default=fld.default,
                        help="bead density (growth: rho0; pointforce: far from the force, number per area)"
-                       if name == "rho0" else "growth: model parameter")
-    p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default 2 sqrt(a/K))")
-    p.add_argument("--n-k", type=int, default=400)
+                       if name == "rho0" else f"growth: {_PARAMETER_HELP[name]}")
+    p.add_argument("--k-max", type=float, default=None, help="growth: largest k (default: 2 sqrt(a/K))")
+    p.add_argument("--n-k", type=int, default=400, help="growth: number of k values")
     p.add_argument("--full", action="store_true", help="growth: unexpanded 1/(a + K k^2) response")
     p.add_argument("--table", action="store_true", help="growth: print k and both growth rates")
     p.add_argument("--f", type=float, default=1.0, help="pointforce: force f")
@@ -369,52 +501,68 @@ def build_parser():
     p.add_argument("--v0", type=float, default=1.0, help="pointforce: speed of the force")
     p.add_argument("--T", type=float, default=1.0, help="pointforce: temperature of the hard-disk EOS")
     p.add_argument("--d", type=float, default=1.0, help="pointforce: disc diameter")
-    p.add_argument("--plot", help="save a plot")
+    p.add_argument("--plot", help="draw the growth rates or the density profile into this file")
     p.set_defaults(func=cmd_theory)
 
-    p = sub.add_parser("continuum", help="run the continuum theory (FFTW solver): pictures, movie, fields")
+    p = _command(sub, "continuum", "run the continuum theory in time (FFTW solver): fields, kymograph, movie",
+                 "Integrate the paper's continuum equations for the bead density rho, the rod density "
+                 "sigma and the polarization P on a periodic line (--n NX) or rectangle (--n NX NY) "
+                 "from a uniform state with small noise (docs/continuum.rst). The defaults are that "
+                 "page's non-reciprocal set (travelling patterns: beads flee rods, rods pursue beads) "
+                 "on 512 points, L = 100, to t = 600, the run of its figure "
+                 "kymograph_travelling.png (a few seconds).",
+                 ["continuum --kymograph travelling.png",
+                  "continuum --sigma0 0.2 --D_rho 0.3 --D_sigma 0.1 --D_rho_sigma 0.05 --D_sigma_rho 0.02 "
+                  "--B 0.5 --a 2 --t-end 90 --kymograph condensation.png",
+                  "continuum --n 128 128 --length 40 40 --t-end 100 --kymograph last.png --save run.npz"],
+                 dump=False)
     for name, fld in theory.LinearParameters.__dataclass_fields__.items():
-        p.add_argument(f"--{name}", type=float, default=fld.default,
-                       help="mean density" if name in ("rho0", "sigma0") else "model parameter")
+        p.add_argument(f"--{name}", type=float, default=CONTINUUM_DEFAULTS[name], help=_PARAMETER_HELP[name])
     p.add_argument("--tau", type=float, default=0.0, help="P relaxation time (0: P slaved)")
     p.add_argument("--rho_close", type=float, default=0.0,
                    help="bead density of close packing (hard-disk stiffness; 0: constant D_rho)")
-    p.add_argument("--proportional-cross-diffusion", action="store_true",
-                   help="cross-diffusion times the moving species' density (keeps densities positive)")
-    p.add_argument("--n", type=int, nargs="+", default=[256], help="grid points: NX (1D) or NX NY (2D)")
+    p.add_argument("--proportional-cross-diffusion", action=argparse.BooleanOptionalAction, default=True,
+                   help="cross-diffusion times the moving species' density (keeps densities positive; "
+                        "--no-proportional-cross-diffusion: the paper's constant one)")
+    p.add_argument("--n", type=int, nargs="+", default=[512], help="grid points: NX (1D) or NX NY (2D)")
     p.add_argument("--length", type=float, nargs="+", default=[100.0], help="box: LX (1D) or LX LY")
-    p.add_argument("--dt", type=float, default=5e-3)
-    p.add_argument("--t-end", type=float, default=100.0)
-    p.add_argument("--frames", type=int, default=100)
-    p.add_argument("--amplitude", type=float, default=1e-3, help="relative noise of the uniform start")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--dt", type=float, default=2.5e-3, help="time step")
+    p.add_argument("--t-end", type=float, default=600.0, help="time at the end of the run")
+    p.add_argument("--frames", type=int, default=150, help="frames kept (for --save, --kymograph, --movie)")
+    p.add_argument("--amplitude", type=float, default=1e-2, help="relative noise of the uniform start")
+    p.add_argument("--seed", type=int, default=1, help="seed of the noise")
     p.add_argument("--save", help="write t, x, y, rho, sigma, P (.npz)")
     p.add_argument("--kymograph", help="space-time picture (1D) or last frame (2D), png")
     p.add_argument("--movie", help="animation (.gif)")
-    p.add_argument("--fps", type=int, default=10)
+    p.add_argument("--fps", type=int, default=10, help="movie: frames per second")
     p.set_defaults(func=cmd_continuum)
 
-    p = sub.add_parser("sweep", help="run a deck over a (phi_b, phi_r) grid and seeds: phase table and diagram",
-                       description="Run DECK (from its folder) for every phi_b x phi_r x seed with mpirun, "
-                       "resumably (a run's folder with result.json is skipped), classify the last frames "
-                       "of each run's dump and write phases.txt, phases.csv and phase_diagram.png into --out.")
+    p = _command(sub, "sweep", "run a deck over a (phi_b, phi_r) grid and seeds: phase table and diagram",
+                 "Run DECK (from its folder) for every phi_b x phi_r x seed with mpirun, "
+                 "resumably (a run's folder with result.json is skipped), classify the last frames "
+                 "of each run's dump and write phases.txt, phases.csv and phase_diagram.png into --out.",
+                 ["sweep examples/channel/in.channel-small --phi-b 0.5 0.65 0.75 --phi-r 0.04 --time 60 "
+                  "--out sweep1 --ranks 2",
+                  "sweep examples/box/in.box-small --phi-b 0.7 0.8 --phi-r 0.03 --seeds 1 2 --time 100 "
+                  "--out sweep2 --var Lx 80e-3"], dump=False)
     p.add_argument("deck", help="LAMMPS input deck taking -var phi_b phi_r seed time out (the example decks)")
     p.add_argument("--phi-b", type=float, nargs="+", required=True, help="bead area fractions")
     p.add_argument("--phi-r", type=float, nargs="+", required=True, help="rod area fractions")
     p.add_argument("--seeds", type=int, nargs="+", default=[2024], help="seeds (one run each per point)")
-    p.add_argument("--time", type=float, required=True, help="simulated time per run (-var time)")
+    p.add_argument("--time", type=float, required=True, help="simulated time per run, s (-var time)")
     p.add_argument("--out", required=True, help="folder of the sweep (one sub-folder per run)")
     p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"),
                    help="a fixed deck variable, repeatable (e.g. --var Lx 80e-3)")
     p.add_argument("--ranks", type=int, default=1, help="MPI ranks per run (mpirun -np)")
-    p.add_argument("--lmp", default=_default_lmp(), help="LAMMPS executable with the plugin (default: "
-                   "$ACTIVEGRAIN_LMP, lmp on PATH, or build/lmp)")
-    p.add_argument("--mpirun", default="mpirun")
-    p.add_argument("--timeout", type=float, help="seconds allowed per run")
+    p.add_argument("--lmp", default=_default_lmp(), help="LAMMPS executable with the plugin "
+                   "($ACTIVEGRAIN_LMP, lmp on PATH, or build/lmp)")
+    p.add_argument("--mpirun", default="mpirun", help="MPI launcher")
+    p.add_argument("--timeout", type=float, help="seconds allowed per run (default: no limit)")
     p.add_argument("--dump", help="dump file a run writes (default: the only *.dump in its folder)")
     p.add_argument("--frames", type=int, default=5, help="classify this many last frames (majority)")
     p.add_argument("--lag", type=int, default=1, help="bead mobility (jammed) and rod drift (flock) against the frame this many earlier")
-    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"])
+    p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"],
+                   help="cell geometry (auto: from the box's boundary flags)")
     p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius (dump units)")
     p.add_argument("--r-out", type=float, help="annulus outer radius (dump units)")
     p.add_argument("--length-unit", type=float, default=1e-3, help="divide dump lengths by this (metres -> d)")

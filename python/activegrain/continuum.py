@@ -2,7 +2,7 @@ r"""The paper's continuum theory in time: Python front end of the pseudo-spectra
 ``libactivegrain_continuum.so`` (``src/continuum``, through ctypes).
 
 Fields rho (beads), sigma (rods) and P (polarization) on a periodic line or rectangle, with
-the currents of :mod:`activegrain.theory` (SPEC section 6); P slaved,
+the currents of :mod:`activegrain.theory` (the paper's eqs. 1-2; docs/continuum.rst); P slaved,
 (a - K lap) P = A grad rho + B grad sigma (``tau = 0``), or relaxing,
 tau dP/dt = -(a - K lap) P + A grad rho + B grad sigma. The diffusivity matrix must have
 eigenvalues of positive real part (small D_rho, D_sigma suffice): without them growth rates stay

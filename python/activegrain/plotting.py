@@ -35,11 +35,46 @@ def _periodic_copies(poly, box):
     return out
 
 
-def draw_snapshot(ax, frame, geometry=None, bead_color="0.55", rod_cmap="hsv", color_rods_by="angle"):
-    """Draw beads as discs and rods as their tapered projected shapes.
+# How the figures name the area fractions of analysis.SPECIES.
+SPECIES_LABELS = {"beads": "beads", "rods": "rods", "all": "beads and rods"}
+HEADING_CMAP = "hsv"          # cyclic: a rod's heading angle, 0 (+x) to 360 degrees
 
-    Rods are coloured by axis angle (``color_rods_by='angle'``) or plain dark red
-    (None); periodic images of rods crossing the boundary are drawn too.
+
+def length_label(frame):
+    """The unit of a frame's lengths for axis labels: ``d`` (bead diameters) when its beads'
+    median diameter is 1, else the length in metres (the decks' SI dumps, ``frame.length_unit``)."""
+    _, r, _ = frame.beads()
+    if len(r) and abs(2 * float(np.median(r)) - 1.0) < 0.02:
+        return "d"
+    return "m" if frame.length_unit == 1.0 else f"{frame.length_unit:g} m"
+
+
+def coord_label(coord, unit):
+    """Axis label of a profile coordinate (x, y, r in ``unit``; theta in radians)."""
+    return r"$\theta$ (rad)" if coord == "theta" else f"{coord} ({unit})"
+
+
+def frame_title(frame, seconds=True, polar=True):
+    """``t = 2.00 s`` (``seconds``: ``frame.time`` is in seconds; else the MD step, and a note that
+    the time is unknown), with the rods' number and polar order P = |<p>| (``polar``)."""
+    text = f"t = {frame.time:.4g} s" if seconds else f"step {frame.step} (time unknown: no time step given)"
+    if polar:
+        rods = frame.rods()
+        if len(rods):
+            mean = rods.axis.mean(axis=0)
+            text += (f";  {len(rods)} rods, polar order P = {np.hypot(*mean):.2f}, mean heading "
+                     f"{np.degrees(np.arctan2(mean[1], mean[0])) % 360:.0f}\u00b0")
+    return text
+
+
+def draw_snapshot(ax, frame, geometry=None, bead_color="0.6", rod_cmap=HEADING_CMAP, color_rods_by="angle",
+                  nose_color="k"):
+    """Draw beads as discs and rods as their tapered projected shapes, the nose (the narrow end,
+    which leads: the rods walk nose first) marked by a dot.
+
+    Rods are coloured by heading, the angle of their axis p from tail to nose (``color_rods_by=
+    'angle'``, cyclic colour map ``rod_cmap``; :func:`draw_heading_wheel` is its key) or plain
+    dark red (None); periodic images of rods crossing the boundary are drawn too.
     Returns the rod PolyCollection.
     """
     xy, r, _ = frame.beads()
@@ -48,18 +83,45 @@ def draw_snapshot(ax, frame, geometry=None, bead_color="0.55", rod_cmap="hsv", c
                                             offset_transform=ax.transData, facecolors=bead_color,
                                             edgecolors="none"))
     rods = frame.rods()
-    polys, colors = [], []
+    polys, colors, noses, nose_r = [], [], [], []
     angle = np.mod(np.arctan2(rods.axis[:, 1], rods.axis[:, 0]), 2 * np.pi) / (2 * np.pi)
     cmap = matplotlib.colormaps[rod_cmap]
-    for poly, a in zip(rods.outlines(), angle):
+    for poly, a, nose, s, rr in zip(rods.outlines(), angle, rods.nose, rods.sphere_s, rods.sphere_r):
         for p in _periodic_copies(poly, frame.box):
             polys.append(p)
             colors.append(cmap(a) if color_rods_by == "angle" else (0.55, 0.05, 0.05, 1))
+            noses.append(nose + p[0] - poly[0])
+            nose_r.append(0.6 * rr[np.argmax(s)])
     pc = PolyCollection(polys, facecolors=colors, edgecolors="k", linewidths=0.3)
     ax.add_collection(pc)
+    if noses and nose_color:
+        nr = np.array(nose_r)
+        ax.add_collection(EllipseCollection(2 * nr, 2 * nr, np.zeros_like(nr), units="xy",
+                                            offsets=np.array(noses), offset_transform=ax.transData,
+                                            facecolors=nose_color, edgecolors="none"))
     _draw_cell(ax, frame, geometry)
     ax.set_aspect("equal")
     return pc
+
+
+def draw_heading_wheel(ax, rod_cmap=HEADING_CMAP):
+    """The key to the rods' colours: a ring coloured by heading angle, with a rod pointing +x."""
+    th = np.linspace(0, 2 * np.pi, 181)
+    ring = np.linspace(0.62, 1.0, 2)
+    T, R = np.meshgrid(th, ring)
+    ax.pcolormesh(R * np.cos(T), R * np.sin(T), np.tile((th[:-1] + th[1:]) / 2, (1, 1)),
+                  cmap=rod_cmap, vmin=0, vmax=2 * np.pi, shading="flat")
+    ax.annotate("", xy=(0.5, 0), xytext=(-0.45, 0),
+                arrowprops=dict(arrowstyle="-|>", color="k", lw=1.2, shrinkA=0, shrinkB=0))
+    for deg, (x, y), ha in ((0, (1.12, 0), "left"), (90, (0, 1.12), "center"), (180, (-1.12, 0), "right"),
+                            (270, (0, -1.12), "center")):
+        ax.text(x, y, f"{deg}\u00b0", ha=ha, va="bottom" if deg == 90 else ("top" if deg == 270 else "center"),
+                fontsize=7)
+    ax.set_title("heading,\nnose (dot) first", fontsize=8)
+    ax.set_xlim(-1.6, 1.6)
+    ax.set_ylim(-1.5, 1.5)
+    ax.set_aspect("equal")
+    ax.axis("off")
 
 
 def _draw_cell(ax, frame, geometry):
@@ -84,27 +146,45 @@ def _draw_cell(ax, frame, geometry):
     ax.set_ylim(lo[1], hi[1])
 
 
-def snapshot(frame, geometry=None, path=None, width=10.0, title=None):
-    """Figure of one frame; saved to ``path`` if given. Returns the figure."""
+def snapshot(frame, geometry=None, path=None, width=10.0, title=None, seconds=True, dpi=150):
+    """Figure of one frame from above: beads grey, rods tapered, coloured by heading, nose
+    marked, with the key to the colours beside it; axes in the frame's lengths (bead diameters d
+    for frames read with their bead diameter as ``length_unit``). Title: :func:`frame_title`
+    (time in seconds when ``seconds``, the rods' polar order) unless ``title`` is given. Saved to
+    ``path`` if given. Returns the figure."""
     L = frame.box.lengths[:2] if geometry is None else geometry.extent
-    fig, ax = plt.subplots(figsize=(width, max(1.5, width * L[1] / L[0]) + 0.6))
+    height = max(2.0, (width - 1.2) * L[1] / L[0]) + 0.9
+    fig = plt.figure(figsize=(width, height))
+    grid = fig.add_gridspec(1, 2, width_ratios=[width - 1.2, 1.2], wspace=0.02)
+    ax = fig.add_subplot(grid[0])
     draw_snapshot(ax, frame, geometry)
-    ax.set_title(title or f"step {frame.step}")
-    fig.tight_layout()
+    unit = length_label(frame)
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    ax.set_title(title or frame_title(frame, seconds), fontsize=10)
+    draw_heading_wheel(fig.add_subplot(grid[1]))
+    fig.subplots_adjust(left=0.07 * 10 / width, right=0.99, bottom=0.55 / height + 0.02,
+                        top=1 - 0.4 / height)
     if path:
-        fig.savefig(path, dpi=150)
+        fig.savefig(path, dpi=dpi)
     return fig
 
 
-def plot_profiles(profiles, path=None, labels=None, ax=None):
-    """Line plot of :class:`activegrain.analysis.Profile` objects."""
+def plot_profiles(profiles, path=None, labels=None, ax=None, unit="d", title=None):
+    """Line plot of :class:`activegrain.analysis.Profile` objects against their coordinate (in
+    ``unit``), the area fraction's species named on the axis."""
     fig = None
     if ax is None:
         fig, ax = plt.subplots(figsize=(7, 3.5))
     for i, p in enumerate(profiles):
-        ax.step(p.centres, p.fraction, where="mid", label=labels[i] if labels else p.species)
-    ax.set_xlabel(profiles[0].coord)
-    ax.set_ylabel("area fraction")
+        ax.step(p.centres, p.fraction, where="mid",
+                label=labels[i] if labels else SPECIES_LABELS.get(p.species, p.species))
+    ax.set_xlabel(coord_label(profiles[0].coord, unit))
+    species = {p.species for p in profiles}
+    one = species.pop() if len(species) == 1 else None
+    ax.set_ylabel(f"area fraction of {SPECIES_LABELS.get(one, one)}" if one else "area fraction")
+    if title:
+        ax.set_title(title, fontsize=10)
     ax.legend()
     if fig is not None:
         fig.tight_layout()
@@ -113,12 +193,16 @@ def plot_profiles(profiles, path=None, labels=None, ax=None):
     return fig or ax.figure
 
 
-def plot_map(x_edges, y_edges, phi, path=None, label="area fraction"):
-    """Image of a 2D area-fraction map (``phi[nx, ny]``; NaN outside the cell)."""
+def plot_map(x_edges, y_edges, phi, path=None, label="area fraction", unit="d", title=None):
+    """Image of a 2D area-fraction map (``phi[nx, ny]``; NaN outside the cell), axes in ``unit``."""
     L = (x_edges[-1] - x_edges[0], y_edges[-1] - y_edges[0])
-    fig, ax = plt.subplots(figsize=(8, max(1.8, 8 * L[1] / L[0]) + 0.6))
+    fig, ax = plt.subplots(figsize=(8, max(1.8, 8 * L[1] / L[0]) + 0.9))
     m = ax.pcolormesh(x_edges, y_edges, np.asarray(phi).T, cmap="viridis", vmin=0)
     fig.colorbar(m, ax=ax, label=label)
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    if title:
+        ax.set_title(title, fontsize=10)
     ax.set_aspect("equal")
     fig.tight_layout()
     if path:
@@ -126,26 +210,31 @@ def plot_map(x_edges, y_edges, phi, path=None, label="area fraction"):
     return fig
 
 
-def kymograph(times, profiles, path=None, label="bead area fraction"):
-    """Image of profiles (rows: times) against the profile coordinate."""
+def kymograph(times, profiles, path=None, label=None, unit="d", seconds=True, title=None):
+    """Image of profiles (rows: times) against the profile coordinate (in ``unit``); the colour
+    bar names the area fraction's species (``label`` overrides it); time in seconds
+    (``seconds``) or MD steps."""
     fractions = np.array([p.fraction for p in profiles])
     e = profiles[0].edges
     fig, ax = plt.subplots(figsize=(7, 4))
     t = np.asarray(times, float)
     t_edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]]) if len(t) > 1 else [t[0] - 0.5, t[0] + 0.5]
     m = ax.pcolormesh(e, t_edges, fractions, shading="flat", cmap="viridis")
-    fig.colorbar(m, ax=ax, label=label)
-    ax.set_xlabel(profiles[0].coord)
-    ax.set_ylabel("time")
+    species = profiles[0].species
+    fig.colorbar(m, ax=ax, label=label or f"area fraction of {SPECIES_LABELS.get(species, species)}")
+    ax.set_xlabel(coord_label(profiles[0].coord, unit))
+    ax.set_ylabel("time (s)" if seconds else "MD step")
+    if title:
+        ax.set_title(title, fontsize=10)
     fig.tight_layout()
     if path:
         fig.savefig(path, dpi=150)
     return fig
 
 
-def movie(frames, path, geometry=None, fps=10, width=8.0):
-    """Animate frames (a list) into ``path``: .gif through Pillow (always available), .mp4
-    through ffmpeg where it is installed."""
+def movie(frames, path, geometry=None, fps=10, width=8.0, seconds=True):
+    """Animate frames (a list) into ``path``, each drawn as :func:`snapshot` draws it: .gif
+    through Pillow (always available), .mp4 through ffmpeg where it is installed."""
     frames = list(frames)
     if not frames:
         raise ValueError("movie: no frames")
@@ -155,13 +244,16 @@ def movie(frames, path, geometry=None, fps=10, width=8.0):
         writer = animation.FFMpegWriter(fps=fps)
     else:
         raise RuntimeError("movie: writing mp4 needs ffmpeg, which is not installed; write a .gif")
-    fig = snapshot(frames[0], geometry, width=width)
+    fig = snapshot(frames[0], geometry, width=width, seconds=seconds)
     ax = fig.axes[0]
+    xlabel, ylabel = ax.get_xlabel(), ax.get_ylabel()
 
     def update(i):
         ax.clear()
         draw_snapshot(ax, frames[i], geometry)
-        ax.set_title(f"step {frames[i].step}")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(frame_title(frames[i], seconds), fontsize=10)
         return ax.collections
 
     anim = animation.FuncAnimation(fig, update, frames=len(frames), blit=False)

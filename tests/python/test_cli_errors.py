@@ -64,8 +64,8 @@ def test_a_dump_cut_within_a_frame_gives_its_whole_frames_and_one_warning_line(d
      "ERROR: activegrain phase: {dir}/nocols.dump: dump lacks column(s) mol, radius"),
     (["profile", "{dir}/run.dump", "--bins", "many"], 2,
      "ERROR: activegrain profile: argument --bins: invalid int value: 'many'"),
-    (["hexagons", "{dir}/run.dump"], 2, "ERROR: activegrain: argument command: invalid choice: 'hexagons'"),
-    ([], 2, "ERROR: activegrain: the following arguments are required: command"),
+    (["hexagons", "{dir}/run.dump"], 2, "ERROR: activegrain: argument COMMAND: invalid choice: 'hexagons'"),
+    ([], 2, "ERROR: activegrain: the following arguments are required: COMMAND"),
 ])
 def test_bad_arguments_give_one_error_line(dumps, argv, status, message):
     done = activegrain(*(a.format(dir=dumps) for a in argv))

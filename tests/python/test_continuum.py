@@ -1,4 +1,5 @@
 """activegrain.continuum: the ctypes front end of the continuum solver library."""
+import io
 import os
 import subprocess
 import sys
@@ -151,3 +152,18 @@ def test_pictures_and_cli(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "activegrain", "continuum", "--D_rho", "0", "--D_sigma", "0"],
                          capture_output=True, text=True)
     assert bad.returncode == 1 and "activegrain continuum: D_rho" in bad.stderr
+
+
+def test_continuum_runs_with_its_defaults_the_documented_travelling_case():
+    """No options: docs/continuum.rst's non-reciprocal set as its figure kymograph_travelling.png ran it."""
+    from dataclasses import asdict
+    from activegrain.continuum_figures import NON_RECIPROCAL
+    args = cli.build_parser().parse_args(["continuum"])
+    assert {k: getattr(args, k) for k in asdict(NON_RECIPROCAL)} == asdict(NON_RECIPROCAL)
+    assert (args.n, args.length, args.dt, args.t_end, args.frames, args.amplitude, args.seed) == \
+        ([512], [100.0], 2.5e-3, 600.0, 150, 1e-2, 1)
+    out = io.StringIO()
+    assert cli.main(["continuum"], out) == 0
+    lines = out.getvalue().splitlines()
+    assert lines[0] == "regime (linear, full dispersion relation): travelling"
+    assert lines[1].startswith("t = 600: rho in [")
