@@ -88,9 +88,10 @@ def _geometry(args, frame):
 def _span(frames, args):
     """The frames' time span for a title: "mean over t = 0-2 s (41 frames)"."""
     unit = " s" if args.timestep is not None else " (MD steps)"
+    from .plotting import seconds_text as text
     if len(frames) == 1:
-        return f"t = {frames[0].time:.4g}{unit}"
-    return f"mean over t = {frames[0].time:.4g}-{frames[-1].time:.4g}{unit} ({len(frames)} frames)"
+        return f"t = {text(frames[0].time)}{unit}"
+    return f"mean over t = {text(frames[0].time)}-{text(frames[-1].time)}{unit} ({len(frames)} frames)"
 
 
 def _print_table(rows, out):

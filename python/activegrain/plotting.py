@@ -54,10 +54,15 @@ def coord_label(coord, unit):
     return r"$\theta$ (rad)" if coord == "theta" else f"{coord} ({unit})"
 
 
+def seconds_text(t):
+    """A time in seconds for a title: 1.00, 12.5, 203."""
+    return f"{t:.2f}" if abs(t) < 10 else (f"{t:.1f}" if abs(t) < 100 else f"{t:.0f}")
+
+
 def frame_title(frame, seconds=True, polar=True):
     """``t = 2.00 s`` (``seconds``: ``frame.time`` is in seconds; else the MD step, and a note that
     the time is unknown), with the rods' number and polar order P = |<p>| (``polar``)."""
-    text = f"t = {frame.time:.4g} s" if seconds else f"step {frame.step} (time unknown: no time step given)"
+    text = f"t = {seconds_text(frame.time)} s" if seconds else f"step {frame.step} (time unknown: no time step given)"
     if polar:
         rods = frame.rods()
         if len(rods):

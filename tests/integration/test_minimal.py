@@ -1,9 +1,12 @@
 """examples/minimal/in.minimal, the complete deck of the docs: it runs on 1 and 2 ranks, keeps
-its atoms and its 4 rods, and its rods walk nose first from vibration and friction alone."""
+its atoms and its 4 rods, and its rods walk nose first from vibration and friction alone; and the
+README's commands for it, taken from the README itself, run as written and draw its picture."""
 import os
 import pathlib
 import re
+import shutil
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -69,3 +72,45 @@ def test_minimal_deck_runs_and_its_rods_walk_nose_first(tmp_path, ranks):
     # Along its axis, each rod moved forward: nose first (the calibrated rods walk ~4 mm/s).
     forward = [np.dot(wrap(after[b][0] - before[b][0]), before[b][1]) for b in before]
     assert np.mean(forward) > 1e-3, forward
+
+
+README = ROOT / "README.md"
+
+
+def readme_minimal_block():
+    """The README's shell block that runs examples/minimal: its lines, as the README shows them."""
+    blocks = re.findall(r"^```(?:sh|bash|console)?\n(.*?)^```", README.read_text(), re.S | re.M)
+    found = [b for b in blocks if "examples/minimal" in b]
+    assert len(found) == 1, "README.md: one code block that runs examples/minimal expected"
+    return found[0].splitlines()
+
+
+def test_readme_block_is_the_deck_and_a_picture_of_its_polar_order():
+    lines = readme_minimal_block()
+    assert any(re.match(r"source build/activegrain-env\.sh(\s|$)", l) for l in lines), lines
+    assert any(re.match(r"cd examples/minimal && lmp -in in\.minimal(\s|$)", l) for l in lines), lines
+    assert any(l.startswith("python3 -m activegrain snapshot minimal.dump ") for l in lines), lines
+
+
+def test_readme_commands_for_the_minimal_deck_run_as_written(tmp_path):
+    """A copy of the repository's examples/minimal beside the build in use; the README's block,
+    line for line, run by bash from the copy's root: the deck runs and the picture is drawn."""
+    lines = readme_minimal_block()
+    root = tmp_path / "repo"
+    shutil.copytree(ROOT / "examples" / "minimal", root / "examples" / "minimal")
+    (root / "build").symlink_to(pathlib.Path(LMP).resolve().parent)   # build/activegrain-env.sh, build/lmp
+    env = dict(os.environ, PATH=os.pathsep.join([str(pathlib.Path(sys.executable).parent),
+                                                 os.environ.get("PATH", "")]), MPLBACKEND="Agg")
+    script = "set -eo pipefail\n" + "\n".join(lines) + "\n"
+    done = subprocess.run(["bash", "-c", script], cwd=root, env=env, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, script + done.stdout[-3000:] + done.stderr[-3000:]
+    assert "ERROR" not in done.stdout and "Traceback" not in done.stderr, done.stdout[-2000:] + done.stderr
+    out = root / "examples" / "minimal"
+    assert (out / "minimal.dump").stat().st_size > 0
+    picture = re.search(r"-o (\S+)", next(l for l in lines if "activegrain snapshot" in l)).group(1)
+    png = out / picture
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20000
+    assert f"wrote {picture}" in done.stdout
+    # the deck printed its rods' polar order (thermo: step time c_order ...) at its last step
+    last = [l.split() for l in done.stdout.splitlines() if l.split()[:1] == ["10000"]]
+    assert last and 0 <= float(last[-1][2]) <= 1, done.stdout[-2000:]
