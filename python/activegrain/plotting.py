@@ -68,7 +68,7 @@ def frame_title(frame, seconds=True, polar=True):
         if len(rods):
             mean = rods.axis.mean(axis=0)
             text += (f";  {len(rods)} rods, polar order P = {np.hypot(*mean):.2f}, mean heading "
-                     f"{np.degrees(np.arctan2(mean[1], mean[0])) % 360:.0f}\u00b0")
+                     f"{round(float(np.degrees(np.arctan2(mean[1], mean[0])))) % 360}\u00b0")
     return text
 
 
