@@ -1,5 +1,6 @@
 """Command line and figures on synthetic dumps."""
 import io
+import pathlib
 import shutil
 
 import numpy as np
@@ -215,3 +216,33 @@ def test_condensate_command(tmp_path):
     assert rc == 1
     rc, _ = run(["condensate", str(dump), "--length-unit", "1e-3", "--r-out", "28e-3", "--reach", "0"])
     assert rc == 1
+
+
+def test_pictures_say_their_time_units_and_species(condensed_dump, tmp_path, monkeypatch):
+    """Titles in seconds with the rods' polar order, axes in bead diameters, the noses marked (one
+    dot per drawn rod, at its narrow end), profile and kymograph naming the same species."""
+    import matplotlib.pyplot as plt
+    figures = {}
+    save = plt.Figure.savefig
+    monkeypatch.setattr(plt.Figure, "savefig", lambda fig, path, **kw: (figures.__setitem__(
+        pathlib.Path(path).name, fig), save(fig, path, **kw)))
+    args = ["--length-unit", "1e-3", "--timestep", "1e-4"]
+    assert run(["snapshot", condensed_dump, *args, "-o", str(tmp_path / "s.png")])[0] == 0
+    ax = figures["s.png"].axes[0]
+    assert ax.get_title().startswith("t = 0.20 s;  26 rods, polar order P = 1.00")
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x (d)", "y (d)")
+    rods, noses = ax.collections[1], ax.collections[2]
+    assert len(noses.get_offsets()) == len(rods.get_paths()) >= 26
+    fr = read_frame(condensed_dump, -1, length_unit=1e-3)
+    r = fr.rods()
+    dots = np.asarray(noses.get_offsets())
+    assert all(np.min(np.linalg.norm(dots - n, axis=1)) < 1e-9 for n in r.nose)   # the narrow ends
+    assert run(["snapshot", condensed_dump, "--length-unit", "1e-3", "-o", str(tmp_path / "n.png")])[0] == 0
+    assert figures["n.png"].axes[0].get_title().startswith("step 2000 (time unknown")
+    assert run(["kymograph", condensed_dump, *args, "--species", "all", "-o", str(tmp_path / "k.png")])[0] == 0
+    k = figures["k.png"].axes
+    assert k[0].get_ylabel() == "time (s)" and k[1].get_ylabel() == "area fraction of beads and rods"
+    assert run(["profile", condensed_dump, *args, "--species", "all", "--plot", str(tmp_path / "p.png")])[0] == 0
+    p = figures["p.png"].axes[0]
+    assert p.get_ylabel() == "area fraction of beads and rods" and p.get_xlabel() == "x (d)"
+    assert p.get_title() == "mean over t = 0.00-0.20 s (3 frames)"
