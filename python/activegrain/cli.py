@@ -210,7 +210,7 @@ def cmd_motility(args, out):
 def cmd_snapshot(args, out):
     from . import plotting
     fr = io.read_frame(args.dump, args.frame, length_unit=args.length_unit, timestep=_timestep(args))
-    plotting.snapshot(fr, _geometry(args, fr), args.output, seconds=args.timestep is not None)
+    plotting.snapshot(fr, _geometry(args, fr), args.output, seconds=args.timestep is not None, dpi=args.dpi)
     out.write(f"wrote {args.output}\n")
 
 
@@ -449,6 +449,7 @@ def build_parser():
                  [f"snapshot out/channel.dump {ex} --frame -1 -o snapshot.png",
                   f"snapshot minimal.dump {ex} --frame -1 -o snapshot.png"], one_frame=True)
     p.add_argument("-o", "--output", required=True, help="image file (png, pdf, svg)")
+    p.add_argument("--dpi", type=int, default=150, help="resolution of a png, dots per inch (the figure is 10 inches wide)")
     p.set_defaults(func=cmd_snapshot)
 
     p = _command(sub, "kymograph", "area-fraction profile against time",
