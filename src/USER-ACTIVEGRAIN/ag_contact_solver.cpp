@@ -281,6 +281,21 @@ double ContactSolver::separate_overlaps(const std::vector<int> &island, const Se
   return largest;
 }
 
+// The resting solve has opened the island's overlaps already, to its own tolerance, which is
+// absolute: what they lack beyond it, as separate_overlaps() reports it.
+double ContactSolver::overlap_shortfall(const std::vector<int> &island, const Settings &settings) const
+{
+  const double allowed = settings.resting_tolerance * settings.resting_speed;
+  double largest = 0.0;
+  for (int k : island) {
+    const Contact &c = contacts[k];
+    const double shortfall = c.min_separation - dot(relative_velocity(bodies, c), c.n);
+    if (c.min_separation > 0.0 && shortfall > std::max(allowed, settings.overlap_tolerance * c.min_separation))
+      largest = std::max(largest, shortfall / c.min_separation);
+  }
+  return largest;
+}
+
 ContactSolver::Result ContactSolver::solve()
 {
   return solve(Settings());
@@ -298,7 +313,8 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
     const std::vector<int> &island = islands[k];
     const int substeps = settings.resting_speed > 0.0 ? solve_impacts_then_resting(island, settings, result)
                                                       : solve_island(island, settings);
-    const double shortfall = separate_overlaps(island, settings);
+    const double shortfall = settings.resting_speed > 0.0 ? overlap_shortfall(island, settings)
+                                                          : separate_overlaps(island, settings);
     result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);
     result.shortfall = std::max(result.shortfall, shortfall);
     result.converged = result.converged && substeps >= 0;

@@ -83,6 +83,7 @@ class ContactSolver {
   int impacts_in_order(const std::vector<int> &island, const Settings &settings);    // -1: capped
   int solve_impacts_then_resting(const std::vector<int> &island, const Settings &settings, Result &result);
   double separate_overlaps(const std::vector<int> &island, const Settings &settings);    // the shortfall left
+  double overlap_shortfall(const std::vector<int> &island, const Settings &settings) const;
 
   Vec3 impact_alone(const Contact &c, double min_separation) const;
   void solve_alone(Contact &c, double min_separation);

@@ -35,8 +35,9 @@ struct SolverSettings {
   // from the velocity gravity and the plates give within a step.
   double resting_speed = 0.0;
   // The resting solve's sweeps stop once none changes a contact's velocity by more than this
-  // fraction of resting_speed, or after max_resting_sweeps.
-  double resting_tolerance = 1.0e-3;
+  // fraction of resting_speed, or after max_resting_sweeps. It also bounds how much slower than
+  // its minimum separation velocity an overlap of a resting-solved island opens.
+  double resting_tolerance = 1.0e-2;
   int max_resting_sweeps = 1000;
 };
 

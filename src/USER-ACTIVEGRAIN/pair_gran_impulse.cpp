@@ -35,7 +35,7 @@ static constexpr double DEFAULT_BETA = 0.2;
 static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution).
-static constexpr int RESTART_FORMAT = -3;
+static constexpr int RESTART_FORMAT = -4;
 // The units check (check_deck): in lj units, grains smaller than this are SI numbers when gravity
 // or the plates' acceleration is >= 1 or the skin is this many diameters; in si units, grains
 // this large with gravity below SI_SMALL_GRAVITY are lj numbers.
@@ -88,17 +88,18 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step] [resting yes|no|V];
-   every setting not given takes its default */
+/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step] [resting yes|no|V]
+   [tolerance T]; every setting not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
   solver_settings = ActiveGrain::ContactSolver::Settings();
   beta = DEFAULT_BETA;
   order = ContactOrder::SHUFFLE;
   resting = 0.0;
+  bool tolerance_given = false;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     const std::string key = arg[iarg];
-    if (key == "coupled" || key == "sweeps" || key == "tolerance")
+    if (key == "coupled" || key == "sweeps")
       error->all(FLERR, "{}: keyword {} is gone: contacts that share a body are solved as one "
                  "compliant impact, whose only setting is resolution", STYLE, key);
     if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", STYLE, key);
@@ -124,10 +125,17 @@ void PairGranImpulse::settings(int narg, char **arg)
       else resting = utils::numeric(FLERR, value, false, lmp);
       if (!(resting >= 0.0 || resting == AUTO_RESTING))
         error->all(FLERR, "{}: resting must be yes, no or a speed >= 0 (found {})", STYLE, value);
+    } else if (key == "tolerance") {
+      solver_settings.resting_tolerance = utils::numeric(FLERR, value, false, lmp);
+      if (!(solver_settings.resting_tolerance > 0.0 && solver_settings.resting_tolerance < 1.0))
+        error->all(FLERR, "{}: tolerance must be in (0, 1) (found {})", STYLE, value);
+      tolerance_given = true;
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
   }
+  if (tolerance_given && resting == 0.0)
+    error->all(FLERR, "{}: keyword tolerance sets the resting solve's: it needs resting yes or a speed", STYLE);
 }
 
 /* pair_coeff I J e mu */
@@ -468,7 +476,8 @@ void PairGranImpulse::read_restart(FILE *fp)
 }
 
 // Settings in restart files: a negative format number first (files of the first format begin with
-// the resolution, which is positive), then resolution, beta, order, the window and resting.
+// the resolution, which is positive), then resolution, beta, order, the window, resting and the
+// resting solve's tolerance.
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
   const int order_code = static_cast<int>(order);
@@ -478,6 +487,7 @@ void PairGranImpulse::write_restart_settings(FILE *fp)
   fwrite(&order_code, sizeof(int), 1, fp);
   fwrite(&solver_settings.window, sizeof(double), 1, fp);
   fwrite(&resting, sizeof(double), 1, fp);
+  fwrite(&solver_settings.resting_tolerance, sizeof(double), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
@@ -495,12 +505,14 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
     if (format < 0) utils::sfread(FLERR, &solver_settings.window, sizeof(double), 1, fp, nullptr, error);
     if (format < -2) utils::sfread(FLERR, &resting, sizeof(double), 1, fp, nullptr, error);
+    if (format < -3) utils::sfread(FLERR, &solver_settings.resting_tolerance, sizeof(double), 1, fp, nullptr, error);
   }
   MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
   MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&solver_settings.resting_tolerance, 1, MPI_DOUBLE, 0, world);
   order = static_cast<ContactOrder>(order_code);
 }
 

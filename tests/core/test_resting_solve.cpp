@@ -140,6 +140,28 @@ TEST(RestingSolve, SlowPackingConvergesWithNothingApproachingAndNoEnergyGained)
   }
 }
 
+TEST(RestingSolve, TheToleranceBoundsWhatAContactLacksAndALooserOneTakesFewerSweeps)
+{
+  // The same squeezed packing with friction at three tolerances: after each solve no contact
+  // approaches faster than the tolerance times the resting speed, and a looser tolerance stops
+  // after fewer sweeps.
+  std::mt19937 rng(5);
+  const Packing p = hexagonal_packing(8, 10, 0.2 * RESTING_SPEED, 0.3, rng);
+  int sweeps_before = 1 << 30;
+  for (double tolerance : {1e-3, 1e-2, 1e-1}) {
+    ContactSolver::Result result;
+    ContactSolver::Settings settings = resting_settings(tolerance);
+    settings.max_resting_sweeps = 20000;
+    const ContactSolver s = solve_packing(p, identity_order(p.touches.size()), settings, &result);
+    std::printf("[ measured ] tolerance %.0e: %d sweeps, fastest approach left %.2g of the resting speed\n",
+                tolerance, result.resting_sweeps, fastest_approach(s) / RESTING_SPEED);
+    EXPECT_TRUE(result.resting_converged);
+    EXPECT_LE(fastest_approach(s), tolerance * RESTING_SPEED);
+    EXPECT_LT(result.resting_sweeps, sweeps_before);
+    sweeps_before = result.resting_sweeps;
+  }
+}
+
 TEST(RestingSolve, BodyVelocitiesDoNotDependOnContactOrder)
 {
   // Forward, reversed and shuffled orders of a squeezed packing agree bit for bit, frictionless

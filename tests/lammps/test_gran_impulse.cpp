@@ -158,6 +158,10 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse order random").find("order must be"), std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse tolerance 1e-2").find("keyword tolerance sets the resting solve's"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse resting yes tolerance 0").find("tolerance must be in (0, 1)"),
+            std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse window -1e-6").find("Pair gran/impulse: window must be"),
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse window").find("missing value after keyword window"),
