@@ -1,4 +1,4 @@
-// Predictive contact (SPEC section 4): which gaps close within a time step, when, and with what
+// Predictive contact (docs/model.rst, contacts): which gaps close within a time step, when, and with what
 // relative velocity the contact law must act. No LAMMPS in here.
 //
 // Velocities are those of the last drift, half a step before the step's start; a contact closes

@@ -1,4 +1,4 @@
-// Many simultaneous contacts between rigid bodies (SPEC section 4b). No LAMMPS in here.
+// Many simultaneous contacts between rigid bodies (docs/model.rst, "Contacts: frictional impulses"). No LAMMPS in here.
 //
 // A contact alone on its bodies (walls aside) is one two-body impact: Stronge's law of
 // ag_impulse.h, exactly. Contacts that share a movable body (a rod lying on a plate touches it

@@ -1,4 +1,4 @@
-// The frictional restitutive impulse between two rigid bodies at one contact (SPEC section 4):
+// The frictional restitutive impulse between two rigid bodies at one contact (docs/model.rst, contacts):
 // Stronge's model with static Coulomb friction. No LAMMPS in here.
 //
 // Restitution definition: Stronge's energetic coefficient e. The work done by the normal impulse

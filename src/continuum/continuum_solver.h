@@ -1,4 +1,4 @@
-// The paper's coarse-grained theory (SPEC section 6) as a pseudo-spectral solver on a periodic
+// The paper's coarse-grained theory (its eqs. 1-5, docs/continuum.rst) as a pseudo-spectral solver on a periodic
 // 1D or 2D grid. No LAMMPS in here; FFTW does the transforms.
 //
 // Fields: bead density rho, rod density sigma, polarization P (d components).

@@ -1,5 +1,5 @@
 // The exact linear dispersion relation of the continuum equations, written out here from
-// SPEC section 6 and independently of the solver: the mode matrix M(k) of
+// the paper's eqs. 1-5 and independently of the solver: the mode matrix M(k) of
 // d(delta rho, delta sigma [, P_parallel])/dt = M (...) about (rho0, sigma0), its eigenvalues
 // and left eigenvectors (to pick one eigenmode out of a random perturbation), and the paper's
 // eqs. 1-2, M's expansion to 4th order in k.

@@ -1,4 +1,4 @@
-// The solver integrates the equations of SPEC section 6 themselves, nonlinear terms included:
+// The solver integrates the paper's equations 1-5 themselves, nonlinear terms included:
 // from fields that are a few Fourier modes, one tiny first step (u1 - u0)/dt matches d/dt of
 // rho, sigma (and P when it relaxes) evaluated here by hand with exact derivatives.
 #include "continuum_solver.h"

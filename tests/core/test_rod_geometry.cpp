@@ -55,7 +55,7 @@ TEST(RodGeometry, PaperRodMatchesNumericalIntegration)
   expect_rel(g.com, num.com, 1e-3, "com");
   expect_rel(g.inertia_axial, num.axial, 1e-3, "axial inertia");
   expect_rel(g.inertia_transverse, num.transverse, 1e-3, "transverse inertia");
-  // SPEC: 2.91 mm^3, 24.7 mg.
+  // docs/model.rst: 2.91 mm^3, 24.7 mg.
   EXPECT_NEAR(g.volume * 1e9, 2.91, 0.005);
   EXPECT_NEAR(g.mass * 1e6, 24.7, 0.05);
 }

@@ -28,6 +28,16 @@ def test_page_cites_nothing_outside_the_repository(page):
         assert path.is_relative_to(ROOT) and path.exists(), f"{target}: not a file of the repository"
 
 
+def test_no_source_deck_or_log_cites_spec():
+    """Code comments, decks and their logs name our own pages for the model, not a file we do not ship."""
+    files = [f for pattern in ("src/**/*.h", "src/**/*.cpp", "tests/**/*.h", "tests/**/*.cpp", "examples/*/in.*",
+                               "examples/*/log.*", "bench/in.*", "python/**/*.py")
+             for f in ROOT.glob(pattern)]
+    assert len(files) > 50
+    citing = [str(f.relative_to(ROOT)) for f in files if re.search(r"\bSPEC\b", f.read_text(errors="replace"))]
+    assert not citing, f"cite SPEC: {citing}"
+
+
 def test_style_pages_link_the_minimal_deck():
     assert len(STYLE_PAGES) >= 7
     for page in STYLE_PAGES:
