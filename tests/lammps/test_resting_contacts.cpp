@@ -2,8 +2,9 @@
 // rods and beads between the vibrating rough plates of the paper's decks (bead fraction 0.78,
 // rods 0.04): the bodies' velocities do not depend on the order in which contacts are handed to
 // the solver (tag, reverse, shuffle), and every resting solve converges within its sweep cap
-// (tests/core/test_resting_solve.cpp checks single solves).
-#include "lammps_fixture.h"
+// (tests/core/test_resting_solve.cpp checks single solves); the solve's tolerance is kept in
+// restart files.
+#include "bead_box.h"
 
 #include "atom.h"
 #include "pair_gran_impulse.h"
@@ -75,4 +76,43 @@ TEST_F(RestingContacts, BodyVelocitiesDoNotDependOnContactOrder)
   const int cap = settings.max_resting_sweeps;
   EXPECT_LT(largest, tolerance);
   EXPECT_LT(std::max({sweeps_tag, sweeps_reverse, sweeps_shuffle}), cap);
+}
+
+class RestingRing : public BeadBox {
+ protected:
+  static constexpr const char *STYLES = "fix nve all nve/sphere\ncompute solver all pair gran/impulse\n";
+  // The sweeps of the next step's resting solve.
+  double sweeps_of_next_step()
+  {
+    command("variable sweeps equal c_solver[" + std::to_string(LAMMPS_NS::PairGranImpulse::RESTING_SWEEPS + 1) +
+            "]\nrun 1 post no");
+    return value("v_sweeps");
+  }
+  void read_ring(const std::string &pair_style = "")
+  {
+    LammpsTest::TearDown();
+    LammpsTest::SetUp();
+    command("read_restart test_resting_ring.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\n" + pair_style +
+            STYLES);
+  }
+};
+
+TEST_F(RestingRing, TheToleranceTravelsInRestartFiles)
+{
+  // A ring of 10 touching beads around the periodic box, jostled along it slower than the resting
+  // speed: one resting solve from zero, whose sweeps depend on the tolerance. Read back from a
+  // restart file, the style solves with the tolerance it was given, not the default.
+  for (int i = 0; i < 10; ++i) bead(0.0005 + 0.001 * i, 0.005, 0.001, 0.01 * std::sin(2.3 * i + 0.5), 0, 0);
+  command(std::string(PAIR) + "pair_style gran/impulse resting 0.05 tolerance 0.1\n" + STYLES +
+          "run 0 post no\nwrite_restart test_resting_ring.restart");
+  const double given = sweeps_of_next_step();
+  read_ring();
+  const double restarted = sweeps_of_next_step();
+  read_ring("pair_style gran/impulse resting 0.05\n");
+  const double by_default = sweeps_of_next_step();
+  std::printf("[ measured ] sweeps at tolerance 0.1: %g, after a restart %g; at the default tolerance %g\n", given,
+              restarted, by_default);
+  EXPECT_GT(given, 1.0);
+  EXPECT_EQ(restarted, given);
+  EXPECT_GT(by_default, given);
 }
