@@ -10,10 +10,12 @@
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
 # and the fluid reference of the issue: the same deck at its defaults (phi_b 0.75) from its own
-# created start. Prints us per atom-step and that over the fluid's (of the same side).
+# created start. Prints CPU us per atom-step (the loop time times its CPU use, so that a busy
+# machine slows every row alike) and that over the fluid's (of the same side).
 #   bench/dense.sh [--quick]         --quick: a few steps per run (checks the script)
 #   BASE=../ag-base bench/dense.sh   with a baseline: git worktree add ../ag-base 8ca6466 &&
 #                                    (cd ../ag-base && bash -c 'source tools/common.sh; prepare_build')
+#   BASE_ARGS="-var resting yes"     the baseline's deck variables (default: none)
 #   TIME (0.1) and PHI_B ("0.6586 0.7186 0.7586 0.7986 0.8203") override the defaults.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -27,8 +29,8 @@ base=${BASE:+$(cd "$BASE" && pwd)}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-loop() {    # seconds steps atoms of the last "Loop time" line
-  awk '/^Loop time of/ {t=$4; s=$9; n=$12} END {if (t=="") exit 1; print t, s, n}' "$1"
+loop() {    # CPU seconds (the loop's wall time times its CPU use), steps and atoms of the last loop
+  awk '/^Loop time of/ {t=$4; s=$9; n=$12} /% CPU use/ {c=$1+0} END {if (t=="") exit 1; print t*c/100, s, n}' "$1"
 }
 # side lmp deck_dir log extra-args...: one timed run
 run() {
@@ -43,7 +45,7 @@ mkdir -p "$work"/out-{impacts,resting,base}
 sides=(impacts resting); [ -n "$base" ] && sides+=(base)
 lmp_of() { case $1 in base) echo "$base/build/lmp" ;; *) echo "$ours" ;; esac; }
 dir_of() { case $1 in base) echo "$base/examples/channel" ;; *) echo "$here/../examples/channel" ;; esac; }
-args_of() { case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; base) echo "" ;; esac; }
+args_of() { case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; base) echo "${BASE_ARGS:-}" ;; esac; }
 
 echo "# $(date -u +%F) TIME $time s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 declare -A fluid
