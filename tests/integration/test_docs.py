@@ -32,7 +32,7 @@ def test_no_source_deck_or_log_cites_spec():
     """Code comments, decks and their logs name our own pages for the model, not a file we do not ship."""
     files = [f for pattern in ("src/**/*.h", "src/**/*.cpp", "tests/**/*.h", "tests/**/*.cpp", "examples/*/in.*",
                                "examples/*/log.*", "bench/in.*", "python/**/*.py")
-             for f in ROOT.glob(pattern)]
+             for f in ROOT.glob(pattern) if f.name != "log.lammps"]    # a run's own log, never committed
     assert len(files) > 50
     citing = [str(f.relative_to(ROOT)) for f in files if re.search(r"\bSPEC\b", f.read_text(errors="replace"))]
     assert not citing, f"cite SPEC: {citing}"
