@@ -84,7 +84,7 @@ std::pair<std::vector<double>, std::vector<double>> RodRanksTest::run_both(std::
     serial = speeds(alone, nrods);
     delete alone;
   }
-  MPI_Bcast(serial.data(), nrods, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  broadcast_from_rank0(serial);
   LammpsTest::SetUp();
 
   vars["tag"] = "test_ranks_parallel";
