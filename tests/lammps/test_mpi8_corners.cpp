@@ -36,13 +36,18 @@ double extracted(LAMMPS_NS::LAMMPS *lmp, const std::string &expr)
   auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
   const double result = p ? *p : NAN;
   lammps_free(p);
+  if (lammps_has_error(lmp)) {
+    char message[2048] = "";
+    lammps_get_last_error_message(lmp, message, sizeof(message));
+    ADD_FAILURE() << expr << ": " << message;
+  }
   return result;
 }
 
 // 16 rods on plates of rms slope 0.01 (correlation length 1 mm) in an 80 mm square, 20 mm apart,
 // centred on the lines x, y = 0, 20, 40, 60 mm: with 4 x 2 sub-domains (8 ranks) the cuts are at
-// x = 0, 20, 40, 60 and y = 0, 40 mm, so 8 rods start on a corner of four sub-domains and the
-// other 8 on an edge of two. The decks' time step, 0.05 s to settle, 0.15 s measured.
+// x = 0, 20, 40, 60 and y = 0, 40 mm (or x and y swapped), so 8 rods start on a corner of four
+// sub-domains and the other 8 on an edge of two. The decks' time step, 0.05 s to settle, 0.15 s measured.
 constexpr int NRODS = 16;
 constexpr double START = 0.05, WALK = 0.15;    // s
 
