@@ -12,12 +12,44 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
+
+// This process's rank and the number of ranks in MPI_COMM_WORLD.
+inline int mpi_rank()
+{
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  return me;
+}
+
+inline int mpi_ranks()
+{
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// Value of an equal-style expression in any LAMMPS instance (a serial reference's too); a LAMMPS
+// error is a test failure and gives NaN.
+inline double extracted(LAMMPS_NS::LAMMPS *lmp, const std::string &expr)
+{
+  lammps_command(lmp, ("variable agtest_value equal " + expr).c_str());
+  auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
+  const double result = p ? *p : NAN;
+  lammps_free(p);
+  if (lammps_has_error(lmp)) {
+    char message[2048] = "";
+    lammps_get_last_error_message(lmp, message, sizeof(message));
+    ADD_FAILURE() << expr << ": " << message;
+  }
+  return result;
+}
 
 class LammpsTest : public ::testing::Test {
  protected:
@@ -53,11 +85,9 @@ class LammpsTest : public ::testing::Test {
   // closed meanwhile (plugins are registered once per process) and opened again afterwards.
   std::vector<double> serial_reference(int n, const std::function<std::vector<double>(LAMMPS_NS::LAMMPS *)> &measure)
   {
-    int me = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &me);
     std::vector<double> result(n, 0.0);
     TearDown();
-    if (me == 0) {
+    if (mpi_rank() == 0) {
       std::vector<const char *> args = {"lmp", "-log", "none", "-nocite", "-screen", "none"};
       auto alone = std::make_unique<LAMMPS_NS::LAMMPS>((int) args.size(), const_cast<char **>(args.data()),
                                                        MPI_COMM_SELF);

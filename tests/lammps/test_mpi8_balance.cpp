@@ -24,34 +24,6 @@ using namespace rod_walking;
 
 namespace {
 
-int rank()
-{
-  int me = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
-  return me;
-}
-
-int ranks()
-{
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-
-double extracted(LAMMPS_NS::LAMMPS *lmp, const std::string &expr)
-{
-  lammps_command(lmp, ("variable agtest_value equal " + expr).c_str());
-  auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
-  const double result = p ? *p : NAN;
-  lammps_free(p);
-  if (lammps_has_error(lmp)) {
-    char message[2048] = "";
-    lammps_get_last_error_message(lmp, message, sizeof(message));
-    ADD_FAILURE() << expr << ": " << message;
-  }
-  return result;
-}
-
 constexpr int NRODS = 16;
 constexpr double START = 0.05, WALK = 0.08;    // s, at the decks' time step 1e-4 s
 constexpr int EVERY = 50;                     // steps between rebalancings
@@ -146,9 +118,9 @@ class BalanceTest : public LammpsTest {
   static void expect_whole(const std::vector<double> &before, const std::vector<double> &after,
                            const std::string &name)
   {
-    if (rank() == 0)
+    if (mpi_rank() == 0)
       std::printf("[ measured ] %s on %d ranks: %g atoms, %g distinct body IDs (before: %g, %g)\n", name.c_str(),
-                  ranks(), after[NRODS], after[NRODS + 1], before[NRODS], before[NRODS + 1]);
+                  mpi_ranks(), after[NRODS], after[NRODS + 1], before[NRODS], before[NRODS + 1]);
     EXPECT_EQ(after[NRODS], 9.0 * NRODS) << name;
     EXPECT_EQ(after[NRODS + 1], NRODS) << name;
     for (int k = 0; k < NRODS; ++k) {
@@ -198,11 +170,11 @@ void BalanceTest::check(Balance balance, const char *name)
   std::vector<double> difference(NRODS);
   for (int k = 0; k < NRODS; ++k) difference[k] = parallel[k] - serial[k];
   const double tolerance = 3.0 * standard_error(difference) + 0.02 * mean(serial);
-  if (rank() == 0)
+  if (mpi_rank() == 0)
     std::printf("[ measured ] %s on %d ranks: cuts moved up to %.3f mm while measuring; mean speed of 16 rods "
                 "%.4f mm/s, on 1 rank without rebalancing %.4f (allowed difference %.3f)\n",
-                name, ranks(), moved * 1e3, mean(parallel) * 1e3, mean(serial) * 1e3, tolerance * 1e3);
-  if (ranks() > 1) EXPECT_GT(moved, 0.0) << name << ": the rebalancing moved no cut";
+                name, mpi_ranks(), moved * 1e3, mean(parallel) * 1e3, mean(serial) * 1e3, tolerance * 1e3);
+  if (mpi_ranks() > 1) EXPECT_GT(moved, 0.0) << name << ": the rebalancing moved no cut";
   EXPECT_GT(mean(serial), 1e-3);
   EXPECT_NEAR(mean(parallel), mean(serial), tolerance) << name;
 
@@ -219,9 +191,9 @@ void BalanceTest::check(Balance balance, const char *name)
   expect_whole(before, bodies(lmp), std::string(name) + ", continued from the restart file");
   double largest = 0.0;
   for (size_t k = 0; k < continued.size(); ++k) largest = std::max(largest, std::fabs(continued[k] - uninterrupted[k]));
-  if (rank() == 0)
+  if (mpi_rank() == 0)
     std::printf("[ measured ] restart after %s rebalancing on %d ranks: largest difference of a rod's centre from "
-                "the uninterrupted run %.3g m after %s steps\n", name, ranks(), largest, walk_steps.c_str());
+                "the uninterrupted run %.3g m after %s steps\n", name, mpi_ranks(), largest, walk_steps.c_str());
   EXPECT_LT(largest, 1e-12) << name;
 }
 

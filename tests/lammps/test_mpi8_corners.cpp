@@ -16,34 +16,6 @@ using namespace rod_walking;
 
 namespace {
 
-int rank()
-{
-  int me = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
-  return me;
-}
-
-int ranks()
-{
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-
-double extracted(LAMMPS_NS::LAMMPS *lmp, const std::string &expr)
-{
-  lammps_command(lmp, ("variable agtest_value equal " + expr).c_str());
-  auto *p = (double *) lammps_extract_variable(lmp, "agtest_value", nullptr);
-  const double result = p ? *p : NAN;
-  lammps_free(p);
-  if (lammps_has_error(lmp)) {
-    char message[2048] = "";
-    lammps_get_last_error_message(lmp, message, sizeof(message));
-    ADD_FAILURE() << expr << ": " << message;
-  }
-  return result;
-}
-
 // 16 rods on plates of rms slope 0.01 (correlation length 1 mm) in an 80 mm square, 20 mm apart,
 // centred on the lines x, y = 0, 20, 40, 60 mm: with 4 x 2 sub-domains (8 ranks) the cuts are at
 // x = 0, 20, 40, 60 and y = 0, 40 mm (or x and y swapped), so 8 rods start on a corner of four
@@ -94,10 +66,10 @@ TEST_F(CornersTest, RodsWalkAndOrderAsOnOneRankAcrossSubdomainCorners)
   std::vector<double> difference(NRODS);
   for (int k = 0; k < NRODS; ++k) difference[k] = vp[k] - vs[k];
   const double tolerance = 3.0 * standard_error(difference) + 0.02 * mean(vs);
-  if (rank() == 0)
+  if (mpi_rank() == 0)
     std::printf("[ measured ] %d ranks (%d x %d x %d): mean speed of 16 rods %.4f mm/s, on 1 rank %.4f (allowed "
                 "difference %.3f); polar order %.5f, on 1 rank %.5f; rods counted %g\n",
-                ranks(), lmp->comm->procgrid[0], lmp->comm->procgrid[1], lmp->comm->procgrid[2], mean(vp) * 1e3,
+                mpi_ranks(), lmp->comm->procgrid[0], lmp->comm->procgrid[1], lmp->comm->procgrid[2], mean(vp) * 1e3,
                 mean(vs) * 1e3, tolerance * 1e3, parallel[NRODS], serial[NRODS], parallel[NRODS + 1]);
   EXPECT_EQ(lmp->comm->procgrid[2], 1);
   EXPECT_GT(mean(vs), 1e-3);    // they walk (about 4.5 mm/s)
@@ -147,10 +119,10 @@ TEST_F(CornersTest, BedIsAgitatedAsOnOneRankAcrossSubdomainCorners)
   const auto parallel = agitation(lmp);
   ASSERT_FALSE(lammps_has_error(lmp));
   const double allowed = 4.0 * std::hypot(serial[1], parallel[1]) + 0.01 * serial[0];
-  if (rank() == 0)
+  if (mpi_rank() == 0)
     std::printf("[ measured ] %d ranks (%d x %d x %d): mean kinetic energy %.4g +- %.2g J, on 1 rank %.4g +- %.2g "
                 "(allowed difference %.2g); %g beads\n",
-                ranks(), lmp->comm->procgrid[0], lmp->comm->procgrid[1], lmp->comm->procgrid[2], parallel[0],
+                mpi_ranks(), lmp->comm->procgrid[0], lmp->comm->procgrid[1], lmp->comm->procgrid[2], parallel[0],
                 parallel[1], serial[0], serial[1], allowed, parallel[2]);
   ASSERT_GT(serial[0], 0.0);
   EXPECT_NEAR(parallel[0], serial[0], allowed);

@@ -9,14 +9,6 @@
 
 using namespace rod_walking;
 
-namespace {
-int rank()
-{
-  int me = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
-  return me;
-}
-}    // namespace
 
 // Speeds of 4 rods (rod k = molecule k): serial reference against all ranks.
 class RodRanksTest : public LammpsTest {
@@ -56,7 +48,7 @@ TEST_F(RodRanksTest, RodsOnRoughPlatesAcrossSubdomainBoundaries)
   const auto [serial, parallel] = run_both({{"shift", "-10e-3"}, {"dt", "5e-5"}, {"nside", "4"}, {"seed", "1"},
                                             {"rough", "0.01"}, {"rough_length", "1e-3"}}, 16);
   const double tolerance = 3.0 * std::hypot(standard_error(serial), standard_error(parallel));
-  if (rank() == 0)
+  if (mpi_rank() == 0)
     std::printf("[ measured ] mean of 16 rods: %.3f mm/s on all ranks, %.3f on 1 (three standard errors: %.3f)\n",
                 mean(parallel) * 1e3, mean(serial) * 1e3, tolerance * 1e3);
   EXPECT_GT(mean(serial), 0.0);
@@ -67,7 +59,7 @@ std::pair<std::vector<double>, std::vector<double>> RodRanksTest::run_both(std::
                                                                           int nrods)
 {
   vars = flat_plates(vars);
-  const int me = rank();
+  const int me = mpi_rank();
 
   // A plugin registers its commands in one instance at a time: the world instance goes first.
   LammpsTest::TearDown();
@@ -96,7 +88,7 @@ void RodRanksTest::compare(std::map<std::string, std::string> vars, double rod_t
 {
   const int nrods = 4;
   const auto [serial, parallel] = run_both(vars, nrods);
-  if (rank() == 0) {
+  if (mpi_rank() == 0) {
     int nprocs = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
     std::printf("[ measured ] %d ranks vs 1 rank (mm/s):", nprocs);
