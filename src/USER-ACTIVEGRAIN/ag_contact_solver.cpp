@@ -50,7 +50,7 @@ void ContactSolver::prepare()
   contacts_of_body.assign(bodies.size(), 0);
   for (Contact &c : contacts) {
     c.K = contact_matrix(bodies[c.body1], c.r1, bodies[c.body2], c.r2);
-    c.impulse = c.late = c.resting = Vec3();
+    c.impulse = c.late = Vec3();
     ++contacts_of_body[c.body1];
     ++contacts_of_body[c.body2];
   }

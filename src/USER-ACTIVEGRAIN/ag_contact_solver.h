@@ -67,11 +67,8 @@ class ContactSolver {
   const RigidBodyState &body(int i) const { return bodies[i]; }
   const Contact &contact(int c) const { return contacts[c]; }
   const Vec3 &impulse(int c) const { return contacts[c].impulse; }
-  // A contact's resting impulse: the last step's, to start from (set after add_contact), and
-  // this solve's.
-  void set_warm(int c, const Vec3 &J) { contacts[c].warm = J; }
+  // The key that orders the contact in a resting solve (ag_resting_solve.h), from its identity.
   void set_key(int c, std::uint64_t key) { contacts[c].key = key; }
-  const Vec3 &resting(int c) const { return contacts[c].resting; }
 
  private:
   // The stages of solve().

@@ -25,7 +25,6 @@ int RestingSolve::solve(std::vector<RigidBodyState> &bodies, std::vector<SolverC
                         const std::vector<int> &island, const SolverSettings &settings)
 {
   prepare(bodies, contacts, island);
-  warm_start();
   const double converged = settings.resting_tolerance * settings.resting_speed;
   int sweeps = 0;
   bool done = false;
@@ -79,21 +78,6 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   std::stable_sort(sweep_order.begin(), sweep_order.end(), [&](int a, int b) { return colour_of[a] < colour_of[b]; });
 }
 
-// The last step's impulse, within this step's cone: its normal part if pressing, its tangential
-// part in the new tangent plane and within mu times that.
-void RestingSolve::warm_start()
-{
-  for (int k : sweep_order) {
-    const SolverContact &c = contact(k);
-    const double pn = dot(c.warm, c.n);
-    if (pn <= 0.0) continue;
-    const Vec3 pt = within_cone(c.warm - c.n * pn, c.material.mu * pn);
-    normal[k] = pn;
-    tangential[k] = pt;
-    apply_impulse(*solver_bodies, c, c.n * pn + pt);
-  }
-}
-
 // Each contact in turn, colour by colour: the normal impulse that makes it leave at its target
 // (never pulling, over-relaxed), then the friction that stops its slip within mu times it. A
 // contact that stays open and carried nothing has nothing to do. Returns the square of the
@@ -124,9 +108,9 @@ void RestingSolve::store()
 {
   for (std::size_t k = 0; k < size(); ++k) {
     SolverContact &c = contact(k);
-    c.resting = c.n * normal[k] + tangential[k];
-    c.impulse += c.resting;
-    c.late += c.resting * c.time;
+    const Vec3 resting = c.n * normal[k] + tangential[k];
+    c.impulse += resting;
+    c.late += resting * c.time;
   }
 }
 

@@ -8,8 +8,9 @@
 // normal impulse >= 0 that makes it do exactly that, and its tangential impulse stops its slip
 // within the Coulomb disc mu P_n, else lies on the disc's edge. It is solved by projected
 // Gauss-Seidel sweeps on accumulated impulses (normal, over-relaxed, then friction, per contact),
-// warm-started from the impulses the same contacts carried in the last step
-// (SolverContact::warm). The contacts are coloured so that no two of a colour share a movable
+// from zero: the plates' kicks change a packing's impulses from step to step, so that the last
+// step's take as many sweeps, and a solve from the state alone lets restarts continue exactly
+// and every rank count solve the same problem. The contacts are coloured so that no two of a colour share a movable
 // body, in the order of their keys (SolverContact::key, from their identity): a sweep visits the
 // colours in turn, and its result does not depend on the order in which the contacts came, bit
 // for bit. Sweeps stop once none changes a contact's velocity by more than
@@ -37,7 +38,6 @@ class RestingSolve {
   // The stages of solve().
   void prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
                const std::vector<int> &island);
-  void warm_start();
   double sweep();    // the square of the largest velocity change a contact asked for
   void store();
 

@@ -20,14 +20,12 @@ struct SolverContact {
   // relative velocity at that moment.
   Vec3 gain;
   double time = 0.0;              // when within the step it closes (0: touching at the start)
-  Vec3 warm;                      // its resting impulse in the last step (ag_resting_solve.h)
   std::uint64_t key = 0;          // from its identity, the same whatever the order (ag_resting_solve.h)
   // Filled by the solve:
   Mat3 K;
   bool isolated = false;          // the only contact of both its (movable) bodies
   Vec3 impulse;                   // on body 2 (minus on body 1)
   Vec3 late;                      // the sum of impulse times when in the step it acted
-  Vec3 resting;                   // the part of impulse the resting solve gave
   // Of a contact that shares a body (not isolated): n.K.n, and its friction's tangential step.
   double knn = 0.0;
   TangentialStep tangential;

@@ -47,7 +47,6 @@ void ContactAssembly::scan_atoms(const double *maxrad)
 void ContactAssembly::assemble(NeighList *list)
 {
   atom_contacts.clear();
-  identities.clear();
   found.clear();
   gather_pair_contacts(list);
   gather_wall_contacts();
@@ -158,25 +157,8 @@ void ContactAssembly::add_found_contacts()
                                           c.prediction.min_separation, c.prediction.gain,
                                           c.prediction.time_to_contact);
     atom_contacts.push_back(c.atoms);
-    identities.push_back(c.identity);
     solver.set_key(k, c.shuffle);    // from the contact's identity and the step, on any rank
-    if (resting_impulses.empty()) continue;
-    const auto last = resting_impulses.find(c.identity);
-    if (last != resting_impulses.end()) solver.set_warm(k, last->second);
   }
-}
-
-void ContactAssembly::remember_resting()
-{
-  resting_impulses.clear();
-  for (int c = 0; c < solver.num_contacts(); ++c)
-    if (norm2(solver.resting(c)) > 0.0) resting_impulses.emplace(identities[c], solver.resting(c));
-}
-
-std::size_t ContactAssembly::IdentityHash::operator()(const ContactIdentity &id) const
-{
-  return ActiveGrain::hash_words({static_cast<std::uint64_t>(std::get<0>(id) + 1), static_cast<std::uint64_t>(std::get<1>(id)),
-                                  static_cast<std::uint64_t>(std::get<2>(id)), static_cast<std::uint64_t>(std::get<3>(id))});
 }
 
 double ContactAssembly::memory_usage() const

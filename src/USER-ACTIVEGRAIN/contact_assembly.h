@@ -11,7 +11,6 @@
 
 #include <cstdint>
 #include <tuple>
-#include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -59,18 +58,12 @@ class ContactAssembly : protected Pointers {
   void assemble(class NeighList *list);
 
   const AtomContact &atoms_of(int c) const { return atom_contacts[c]; }
-  // After a solve: each contact's resting impulse, from which the same contact's resting solve
-  // starts in the next step (on this rank: a contact solved elsewhere next starts from zero).
-  void remember_resting();
   const StepExtremes &extremes() const { return step; }
   double memory_usage() const;
 
  private:
   // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
   using ContactIdentity = std::tuple<int, int, tagint, tagint>;
-  struct IdentityHash {
-    std::size_t operator()(const ContactIdentity &id) const;
-  };
   // A contact found this step, before it goes to the solver. Contacts are solved in an order
   // given by their identity (and, shuffled, the step), not by the order ranks find them, so that
   // a body solved on one rank sees the same order on any number of ranks.
@@ -114,8 +107,6 @@ class ContactAssembly : protected Pointers {
   std::vector<FoundContact> found;
   std::vector<SortKey> sort_keys;
   std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
-  std::vector<ContactIdentity> identities;    // ... and their identities
-  std::unordered_map<ContactIdentity, ActiveGrain::Vec3, IdentityHash> resting_impulses;    // last step's
   std::vector<ImpulseWall::Contact> wall_contacts;
 };
 

@@ -386,7 +386,6 @@ void PairGranImpulse::solve()
   solver_settings.resting_speed =
       resting == AUTO_RESTING ? solver_settings.resting_gain * update->dt * largest_acceleration() : resting;
   const ActiveGrain::ContactSolver::Result result = solver.solve(solver_settings);
-  if (resting != 0.0) assembly.remember_resting();
   report(diagnostics.record(result, assembly.extremes(), largest_type_radius(), solver_settings.max_substeps),
          diagnostics.tally_energy(solver, assembly));
 }
