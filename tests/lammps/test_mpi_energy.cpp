@@ -60,7 +60,8 @@ class DensePackingEnergy : public BeadMonolayer {
             "atom_modify map array\n"
             "variable geometry index box\nvariable Lx index 24e-3\nvariable Ly index 24e-3\n"
             "variable phi_b index 0.55\nvariable phi_r index 0.10\nvariable amplitude index 0\n"
-            "variable seed index 11\nvariable out index test_mpi_energy_out\n"
+            "variable seed index 11\nvariable out index test_mpi_energy_" +    // a folder per test and rank count
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(mpi_ranks()) + "\n"
             "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
             "include ${create_dir}/in.create\n"
             "unfix gravity\n"

@@ -32,10 +32,15 @@ class RestingContacts : public LammpsTest {
       "variable phi_b index 0.8203\nvariable phi_r index 0.0414\n";
   static constexpr const char *JAMMED_STATE =
       "variable from index " ACTIVEGRAIN_SOURCE_DIR "/examples/channel/states/channel-small-jammed-corner-0s.data.gz\n";
-  // in.create with resting contacts solved together, at dt 1e-4.
-  static constexpr const char *RESTING = "variable resting index yes\nvariable out index test_resting_contacts_out\n"
-                                         "variable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
-                                         "include ${create_dir}/in.create\ntimestep 1e-4\n";
+  // in.create with resting contacts solved together, at dt 1e-4; its output (the rod template)
+  // in a folder of the test's own, so that tests may run at once.
+  static std::string resting()
+  {
+    return std::string("variable resting index yes\nvariable out index test_resting_contacts_") +
+        ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+        "\nvariable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
+        "include ${create_dir}/in.create\ntimestep 1e-4\n";
+  }
 
   Velocities velocities()
   {
@@ -55,7 +60,7 @@ class RestingContacts : public LammpsTest {
   // Every atom's velocity by tag after steps steps; the most sweeps a step's resting solve took.
   Velocities run(const std::string &packing, const std::string &order, int steps, double &most_sweeps)
   {
-    command(packing + RESTING +
+    command(packing + resting() +
             // the same style again: new settings, the same coefficients
             "pair_style gran/impulse resolution ${resolution} window ${window} resting yes order " + order +
             "\ncompute solver all pair gran/impulse\n"
@@ -119,11 +124,11 @@ TEST_F(RestingContacts, TheJammedCornerContinuesFromARestartFileToRoundOff)
   // differs is the rods' round-off on reading a restart file (1e-17 m/s, the same without
   // resting), which this chaotic packing then grows about e-fold every 4 steps: compared after
   // the first step.
-  command(std::string(JAMMED_CELL) + JAMMED_STATE + RESTING +
+  command(std::string(JAMMED_CELL) + JAMMED_STATE + resting() +
           "run 20 post no\nwrite_restart test_resting_contacts.restart\nrun 1 post no");
   const Velocities straight = velocities();
   fresh_lammps();
-  command(std::string(JAMMED_CELL) + "variable continue index test_resting_contacts.restart\n" + RESTING +
+  command(std::string(JAMMED_CELL) + "variable continue index test_resting_contacts.restart\n" + resting() +
           "run 1 post no");
   const double largest = largest_difference(straight, velocities());
   std::printf("[ measured ] the jammed corner, a step after a restart file: largest velocity difference %.3g m/s\n",
