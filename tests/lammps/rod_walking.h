@@ -106,4 +106,13 @@ inline double standard_error(const std::vector<double> &v)
   return std::sqrt(s / (v.size() - 1) / v.size());
 }
 
+// The difference allowed between the mean speeds of the same rods walking on two runs: three
+// standard errors of their rod-by-rod differences plus 2 % of the reference's mean.
+inline double speed_tolerance(const std::vector<double> &reference, const std::vector<double> &other)
+{
+  std::vector<double> difference(reference.size());
+  for (std::size_t k = 0; k < reference.size(); ++k) difference[k] = other[k] - reference[k];
+  return 3.0 * standard_error(difference) + 0.02 * mean(reference);
+}
+
 }    // namespace rod_walking

@@ -167,9 +167,7 @@ void BalanceTest::check(Balance balance, const char *name)
   const auto uninterrupted = positions();
   expect_whole(before, bodies(lmp), name);
 
-  std::vector<double> difference(NRODS);
-  for (int k = 0; k < NRODS; ++k) difference[k] = parallel[k] - serial[k];
-  const double tolerance = 3.0 * standard_error(difference) + 0.02 * mean(serial);
+  const double tolerance = speed_tolerance(serial, parallel);
   if (mpi_rank() == 0)
     std::printf("[ measured ] %s on %d ranks: cuts moved up to %.3f mm while measuring; mean speed of 16 rods "
                 "%.4f mm/s, on 1 rank without rebalancing %.4f (allowed difference %.3f)\n",

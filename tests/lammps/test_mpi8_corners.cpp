@@ -63,9 +63,7 @@ TEST_F(CornersTest, RodsWalkAndOrderAsOnOneRankAcrossSubdomainCorners)
   const auto parallel = walk_and_order(lmp, "corners_parallel");
   ASSERT_FALSE(lammps_has_error(lmp));
   const std::vector<double> vs(serial.begin(), serial.begin() + NRODS), vp(parallel.begin(), parallel.begin() + NRODS);
-  std::vector<double> difference(NRODS);
-  for (int k = 0; k < NRODS; ++k) difference[k] = vp[k] - vs[k];
-  const double tolerance = 3.0 * standard_error(difference) + 0.02 * mean(vs);
+  const double tolerance = speed_tolerance(vs, vp);
   if (mpi_rank() == 0)
     std::printf("[ measured ] %d ranks (%d x %d x %d): mean speed of 16 rods %.4f mm/s, on 1 rank %.4f (allowed "
                 "difference %.3f); polar order %.5f, on 1 rank %.5f; rods counted %g\n",
