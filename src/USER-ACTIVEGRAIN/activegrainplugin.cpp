@@ -5,6 +5,7 @@
 #include "compute_areafrac_chunk.h"
 #include "compute_polar_rod.h"
 #include "fix_rigid_rod.h"
+#include "fix_store_impulse.h"
 #include "fix_wall_impulse.h"
 #include "fix_wall_impulse_region.h"
 #include "pair_gran_impulse.h"
@@ -55,6 +56,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "rigid/rod";
   plugin.info = "Tapered polar rods as rigid bodies with true inertia and polar axis";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixRigidRod>;
+  register_plugin(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "STORE/IMPULSE";
+  plugin.info = "Internal: pair gran/impulse's per-atom store of the impulses still due";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix<FixStoreImpulse>;
   register_plugin(&plugin, lmp);
 
   plugin.style = "command";

@@ -1,7 +1,7 @@
 #include "impulse_carry.h"
 
 #include "atom.h"
-#include "fix_store_atom.h"
+#include "fix_store_impulse.h"
 #include "impulse_delivery.h"
 #include "modify.h"
 #include "update.h"
@@ -14,10 +14,10 @@ static const char *const PENDING_ID = "AG_GRAN_IMPULSE_DUE";
 
 void ImpulseCarry::create_store()
 {
-  pending = dynamic_cast<FixStoreAtom *>(modify->get_fix_by_id(PENDING_ID));
+  pending = dynamic_cast<FixStoreImpulse *>(modify->get_fix_by_id(PENDING_ID));
   if (!pending)
-    pending = dynamic_cast<FixStoreAtom *>(
-        modify->add_fix(fmt::format("{} all STORE/ATOM {} 0 0 1", PENDING_ID, static_cast<int>(NUM_SAVED))));
+    pending = dynamic_cast<FixStoreImpulse *>(
+        modify->add_fix(fmt::format("{} all STORE/IMPULSE {} 0 0 1", PENDING_ID, static_cast<int>(NUM_SAVED))));
 }
 
 void ImpulseCarry::delete_store()

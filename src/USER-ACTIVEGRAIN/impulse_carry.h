@@ -1,8 +1,8 @@
 // The half of a step's contact impulses still due (pair gran/impulse): the contact force of the
 // last step also acts in the next initial_integrate. Across a run boundary or a restart, setup()
-// restores it instead of solving anew; it travels with the atoms (a per-atom store) as force,
-// torque, their time step and the step they belong to. A time step change rescales it, so that
-// each impulse still acts in full. The global virial of that step comes back at setup too.
+// restores it instead of solving anew; it travels with the atoms (a per-atom store, fix
+// STORE/IMPULSE) as force, torque, their time step and the step they belong to. A time step
+// change rescales it, so that each impulse still acts in full. The global virial of that step comes back at setup too.
 #pragma once
 
 #include "impulse_delivery.h"
@@ -14,7 +14,7 @@ class ImpulseCarry : protected Pointers {
  public:
   explicit ImpulseCarry(LAMMPS *lmp) : Pointers(lmp) {}
 
-  // The per-atom store (a fix STORE/ATOM, found again after a restart).
+  // The per-atom store (fix STORE/IMPULSE, found again after a restart).
   void create_store();
   void delete_store();
   // The forces of this step's contacts, as they were added to the atoms.
@@ -32,7 +32,7 @@ class ImpulseCarry : protected Pointers {
   // to (their impulse is force times it: a time step change keeps the impulse), and the step.
   enum SavedColumn { SAVED_FORCE = 0, SAVED_TORQUE = 3, SAVED_DT = 6, SAVED_STEP, NUM_SAVED };
 
-  class FixStoreAtom *pending = nullptr;
+  class FixStoreImpulse *pending = nullptr;
   double force_dt = 0.0;    // time step of the contact forces now in atom->f (0: none)
   double last_virial[ImpulseDelivery::NUM_VIRIAL] = {};
   bigint last_virial_step = -1;

@@ -197,6 +197,8 @@ def test_in_tree_lmp_runs_the_single_rod_example_without_plugin(tmp_path):
     packages = re.search(r"Installed packages:\s*\n\n(.*)\n", help_text).group(1).split()
     assert {"ACTIVEGRAIN", "RIGID", "GRANULAR"} <= set(packages) and "PLUGIN" not in packages
     for _, name in plugin_styles():
+        if name[0].isupper():    # LAMMPS's help lists no internal style (upper-case name)
+            continue
         assert re.search(rf"(^|\s){re.escape(name)}(\s|$)", help_text), name
 
     (tmp_path / "in-tree").mkdir()
