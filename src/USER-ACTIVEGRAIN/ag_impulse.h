@@ -38,6 +38,13 @@ double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J);
 Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
                          double target_separation);
 
+// A contact's tangent plane as a step of friction sees it: the frame's tangents, K restricted to
+// the plane and inverted (symmetric), and the tangential components of K n.
+struct TangentPlane {
+  Vec3 tangent1, tangent2;
+  double inv11 = 0, inv12 = 0, inv22 = 0, kn1 = 0, kn2 = 0;
+};
+
 // The tangential part of an impact at a fixed contact, integrated in small steps of normal
 // impulse (an integrated impact, or one contact of a compliant multi-contact impact): what a
 // step needs to stop the slip (K restricted to the tangent plane, inverted, and the tangential
@@ -55,17 +62,13 @@ class TangentialStep {
   // friction cone allows it (stuck = true); otherwise the largest friction impulse mu dp
   // against the slip (the current one, plus what dp drives within the step).
   Vec3 friction(const Vec3 &u, double mu, double dp, bool &stuck) const;
-  // Tangential impulse that stops the slip of u with no normal impulse (a resting contact's
-  // friction, bounded by its accumulated normal impulse: ag_resting_solve.h).
-  Vec3 stopping(const Vec3 &u) const { return stick(-dot(tangent1, u), -dot(tangent2, u)); }
+  const TangentPlane &plane() const { return tangent_plane; }
 
  private:
   // The tangential impulse that stops a slip of components -b1, -b2 along the tangents.
   Vec3 stick(double b1, double b2) const;
 
-  Vec3 tangent1, tangent2;    // the contact frame's tangents
-  // The inverse of K on the tangent plane (symmetric) and the tangential components of K n.
-  double inv11 = 0, inv12 = 0, inv22 = 0, kn1 = 0, kn2 = 0;
+  TangentPlane tangent_plane;
   double stick_ratio = 0;    // sticking_ratio()
 };
 

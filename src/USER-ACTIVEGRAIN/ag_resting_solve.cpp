@@ -10,13 +10,6 @@ namespace {
 // Over-relaxation of the normal impulses: faster convergence up to oscillation near 2.
 constexpr double RELAXATION = 1.7;
 
-// A tangential impulse within the Coulomb disc of radius limit.
-Vec3 within_cone(const Vec3 &pt, double limit)
-{
-  const double length = norm(pt);
-  return length > limit ? pt * (limit / length) : pt;
-}
-
 }    // namespace
 
 void RestingSolve::resize(std::size_t num_bodies) { body_colours.resize(num_bodies); }
@@ -46,16 +39,8 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   solver_contacts = &contacts;
   island_contacts = &island;
   const std::size_t n = island.size();
-  normal.assign(n, 0.0);
-  tangential.assign(n, Vec3());
-  normal_mass.resize(n);
-  normal_response.resize(n);
   by_key.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    normal_mass[k] = 1.0 / contact(k).knn;
-    normal_response[k] = contact(k).K * contact(k).n;
-    by_key[k] = static_cast<int>(k);
-  }
+  for (std::size_t k = 0; k < n; ++k) by_key[k] = static_cast<int>(k);
   std::sort(by_key.begin(), by_key.end(), [&](int a, int b) {
     return contact(a).key != contact(b).key ? contact(a).key < contact(b).key : a < b;
   });
@@ -76,6 +61,27 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   }
   sweep_order = by_key;
   std::stable_sort(sweep_order.begin(), sweep_order.end(), [&](int a, int b) { return colour_of[a] < colour_of[b]; });
+  rows.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = sweep_order[i];
+    const SolverContact &c = contact(k);
+    Row &row = rows[i];
+    row.contact = k;
+    row.body1 = c.body1;
+    row.body2 = c.body2;
+    row.r1 = c.r1;
+    row.r2 = c.r2;
+    row.gain = c.gain;
+    row.n = c.n;
+    row.plane = c.tangential.plane();
+    row.target = std::max(0.0, c.min_separation);
+    row.normal_mass = 1.0 / c.knn;
+    row.mu = c.material.mu;
+    row.kn = c.K * c.n;
+    row.kt1 = c.K * row.plane.tangent1;
+    row.kt2 = c.K * row.plane.tangent2;
+    row.normal = row.tangent1 = row.tangent2 = 0.0;
+  }
 }
 
 // Each contact in turn, colour by colour: the normal impulse that makes it leave at its target
@@ -84,31 +90,43 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
 // largest velocity change a contact asked for.
 double RestingSolve::sweep()
 {
+  std::vector<RigidBodyState> &bodies = *solver_bodies;
   double largest = 0.0;
-  for (int k : sweep_order) {
-    const SolverContact &c = contact(k);
-    const Vec3 u = relative_velocity(*solver_bodies, c);
-    const double target = std::max(0.0, c.min_separation);
-    const double asked = (target - dot(u, c.n)) * normal_mass[k];
-    const double pn = std::max(0.0, normal[k] + RELAXATION * asked);
-    if (pn == 0.0 && normal[k] == 0.0) continue;
-    const double dpn = pn - normal[k];
-    const Vec3 pt = within_cone(tangential[k] + c.tangential.stopping(u + normal_response[k] * dpn),
-                                c.material.mu * pn);
-    const Vec3 dt = pt - tangential[k];
-    largest = std::max(largest, norm2(normal_response[k] * std::max(-normal[k], asked) + c.K * dt));
-    normal[k] = pn;
-    tangential[k] = pt;
-    apply_impulse(*solver_bodies, c, c.n * dpn + dt);
+  for (Row &row : rows) {
+    RigidBodyState &body1 = bodies[row.body1], &body2 = bodies[row.body2];
+    const Vec3 u = body2.velocity_at_arm(row.r2) - body1.velocity_at_arm(row.r1) + row.gain;
+    const double asked = (row.target - dot(u, row.n)) * row.normal_mass;
+    const double pn = std::max(0.0, row.normal + RELAXATION * asked);
+    if (pn == 0.0 && row.normal == 0.0) continue;
+    const double dpn = pn - row.normal;
+    // The friction that stops the slip after dpn, within the Coulomb disc of radius mu pn.
+    const TangentPlane &p = row.plane;
+    const double b1 = -dot(p.tangent1, u) - dpn * p.kn1, b2 = -dot(p.tangent2, u) - dpn * p.kn2;
+    double pt1 = row.tangent1 + p.inv11 * b1 + p.inv12 * b2;
+    double pt2 = row.tangent2 + p.inv12 * b1 + p.inv22 * b2;
+    const double limit = row.mu * pn, length2 = pt1 * pt1 + pt2 * pt2;
+    if (length2 > limit * limit) {
+      const double scale = limit / std::sqrt(length2);
+      pt1 *= scale;
+      pt2 *= scale;
+    }
+    const double dt1 = pt1 - row.tangent1, dt2 = pt2 - row.tangent2;
+    largest = std::max(largest, norm2(row.kn * std::max(-row.normal, asked) + row.kt1 * dt1 + row.kt2 * dt2));
+    row.normal = pn;
+    row.tangent1 = pt1;
+    row.tangent2 = pt2;
+    const Vec3 J = row.n * dpn + p.tangent1 * dt1 + p.tangent2 * dt2;
+    body1.apply_impulse_at_arm(-J, row.r1);
+    body2.apply_impulse_at_arm(J, row.r2);
   }
   return largest;
 }
 
 void RestingSolve::store()
 {
-  for (std::size_t k = 0; k < size(); ++k) {
-    SolverContact &c = contact(k);
-    const Vec3 resting = c.n * normal[k] + tangential[k];
+  for (const Row &row : rows) {
+    SolverContact &c = contact(row.contact);
+    const Vec3 resting = row.n * row.normal + row.plane.tangent1 * row.tangent1 + row.plane.tangent2 * row.tangent2;
     c.impulse += resting;
     c.late += resting * c.time;
   }

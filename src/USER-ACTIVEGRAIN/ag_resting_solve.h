@@ -41,18 +41,27 @@ class RestingSolve {
   double sweep();    // the square of the largest velocity change a contact asked for
   void store();
 
+  // What a sweep needs of an island contact, in sweep order and in one place: its bodies and
+  // lever arms, its frame, what an impulse along it does to its velocity, and its accumulated
+  // normal and tangential impulse.
+  struct Row {
+    int contact, body1, body2;    // island contact (index into island_contacts)
+    Vec3 r1, r2, gain, n;
+    TangentPlane plane;
+    double target, normal_mass, mu;    // max(0, min separation), 1 / n.K.n, friction
+    Vec3 kn, kt1, kt2;                 // K n, K t1, K t2
+    double normal = 0.0, tangent1 = 0.0, tangent2 = 0.0;
+  };
+
   // The island (prepare()): its bodies' and contacts' lists, and its contacts in them.
   std::vector<RigidBodyState> *solver_bodies = nullptr;
   std::vector<SolverContact> *solver_contacts = nullptr;
   const std::vector<int> *island_contacts = nullptr;
-  // Per island contact: its accumulated normal and tangential impulse, 1 / n.K.n, K n, its colour.
-  std::vector<double> normal, normal_mass;
-  std::vector<Vec3> tangential, normal_response;
+  std::vector<Row> rows;
   std::vector<int> colour_of;
   std::vector<int> by_key, sweep_order;    // island contacts by key, and colour by colour
   std::vector<std::vector<int>> body_colours;    // per body: the colours of its contacts so far
 
-  std::size_t size() const { return island_contacts->size(); }
   SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }
 };
 
