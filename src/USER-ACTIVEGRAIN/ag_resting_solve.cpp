@@ -81,43 +81,72 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.kt1 = c.K * row.plane.tangent1;
     row.kt2 = c.K * row.plane.tangent2;
     row.normal = row.tangent1 = row.tangent2 = 0.0;
+    row.with_next = i + 1 < n && colour_of[sweep_order[i + 1]] == colour_of[k];
   }
 }
 
-// Each contact in turn, colour by colour: the normal impulse that makes it leave at its target
-// (never pulling, over-relaxed), then the friction that stops its slip within mu times it. A
-// contact that stays open and carried nothing has nothing to do. Returns the square of the
-// largest velocity change a contact asked for.
+// The normal impulse that makes the contact leave at its target (never pulling, over-relaxed),
+// then the friction that stops its slip within mu times it. A contact that stays open and
+// carried nothing has nothing to do (zero).
+Vec3 RestingSolve::row_impulse(Row &row, const Vec3 &u, double &asked2)
+{
+  const double asked = (row.target - dot(u, row.n)) * row.normal_mass;
+  const double pn = std::max(0.0, row.normal + RELAXATION * asked);
+  if (pn == 0.0 && row.normal == 0.0) {
+    asked2 = 0.0;
+    return Vec3();
+  }
+  const double dpn = pn - row.normal;
+  // The friction that stops the slip after dpn, within the Coulomb disc of radius mu pn.
+  const TangentPlane &p = row.plane;
+  const double b1 = -dot(p.tangent1, u) - dpn * p.kn1, b2 = -dot(p.tangent2, u) - dpn * p.kn2;
+  double pt1 = row.tangent1 + p.inv11 * b1 + p.inv12 * b2;
+  double pt2 = row.tangent2 + p.inv12 * b1 + p.inv22 * b2;
+  const double limit = row.mu * pn, length2 = pt1 * pt1 + pt2 * pt2;
+  if (length2 > limit * limit) {
+    const double scale = limit / std::sqrt(length2);
+    pt1 *= scale;
+    pt2 *= scale;
+  }
+  const double dt1 = pt1 - row.tangent1, dt2 = pt2 - row.tangent2;
+  asked2 = norm2(row.kn * std::max(-row.normal, asked) + row.kt1 * dt1 + row.kt2 * dt2);
+  row.normal = pn;
+  row.tangent1 = pt1;
+  row.tangent2 = pt2;
+  return row.n * dpn + p.tangent1 * dt1 + p.tangent2 * dt2;
+}
+
+// Each contact in turn, colour by colour; two of one colour at a time where they follow each
+// other (they share no movable body, so the second's velocities need not wait for the first's
+// impulse). Returns the square of the largest velocity change a contact asked for.
 double RestingSolve::sweep()
 {
   std::vector<RigidBodyState> &bodies = *solver_bodies;
+  auto velocity = [&](const Row &row) {
+    return bodies[row.body2].velocity_at_arm(row.r2) - bodies[row.body1].velocity_at_arm(row.r1) + row.gain;
+  };
+  auto apply = [&](const Row &row, const Vec3 &J) {
+    bodies[row.body1].apply_impulse_at_arm(-J, row.r1);
+    bodies[row.body2].apply_impulse_at_arm(J, row.r2);
+  };
   double largest = 0.0;
-  for (Row &row : rows) {
-    RigidBodyState &body1 = bodies[row.body1], &body2 = bodies[row.body2];
-    const Vec3 u = body2.velocity_at_arm(row.r2) - body1.velocity_at_arm(row.r1) + row.gain;
-    const double asked = (row.target - dot(u, row.n)) * row.normal_mass;
-    const double pn = std::max(0.0, row.normal + RELAXATION * asked);
-    if (pn == 0.0 && row.normal == 0.0) continue;
-    const double dpn = pn - row.normal;
-    // The friction that stops the slip after dpn, within the Coulomb disc of radius mu pn.
-    const TangentPlane &p = row.plane;
-    const double b1 = -dot(p.tangent1, u) - dpn * p.kn1, b2 = -dot(p.tangent2, u) - dpn * p.kn2;
-    double pt1 = row.tangent1 + p.inv11 * b1 + p.inv12 * b2;
-    double pt2 = row.tangent2 + p.inv12 * b1 + p.inv22 * b2;
-    const double limit = row.mu * pn, length2 = pt1 * pt1 + pt2 * pt2;
-    if (length2 > limit * limit) {
-      const double scale = limit / std::sqrt(length2);
-      pt1 *= scale;
-      pt2 *= scale;
+  for (std::size_t i = 0; i < rows.size();) {
+    Row &a = rows[i];
+    if (a.with_next) {
+      Row &b = rows[i + 1];
+      const Vec3 ua = velocity(a), ub = velocity(b);
+      double asked_a, asked_b;
+      const Vec3 Ja = row_impulse(a, ua, asked_a), Jb = row_impulse(b, ub, asked_b);
+      apply(a, Ja);
+      apply(b, Jb);
+      largest = std::max(largest, std::max(asked_a, asked_b));
+      i += 2;
+    } else {
+      double asked;
+      apply(a, row_impulse(a, velocity(a), asked));
+      largest = std::max(largest, asked);
+      ++i;
     }
-    const double dt1 = pt1 - row.tangent1, dt2 = pt2 - row.tangent2;
-    largest = std::max(largest, norm2(row.kn * std::max(-row.normal, asked) + row.kt1 * dt1 + row.kt2 * dt2));
-    row.normal = pn;
-    row.tangent1 = pt1;
-    row.tangent2 = pt2;
-    const Vec3 J = row.n * dpn + p.tangent1 * dt1 + p.tangent2 * dt2;
-    body1.apply_impulse_at_arm(-J, row.r1);
-    body2.apply_impulse_at_arm(J, row.r2);
   }
   return largest;
 }

@@ -51,7 +51,11 @@ class RestingSolve {
     double target, normal_mass, mu;    // max(0, min separation), 1 / n.K.n, friction
     Vec3 kn, kt1, kt2;                 // K n, K t1, K t2
     double normal = 0.0, tangent1 = 0.0, tangent2 = 0.0;
+    bool with_next = false;    // the next row has the same colour: no movable body in common
   };
+  // A row's impulse for relative velocity u (accumulated into the row), and the square of the
+  // velocity change it asked for.
+  static Vec3 row_impulse(Row &row, const Vec3 &u, double &asked2);
 
   // The island (prepare()): its bodies' and contacts' lists, and its contacts in them.
   std::vector<RigidBodyState> *solver_bodies = nullptr;
