@@ -8,8 +8,8 @@
 #          resolution 50
 # Both runs of the example (pour 3000 grains for 25 time units, then 25 of chute flow). Prints,
 # per run and side: the loop's CPU seconds (its wall time times its CPU use), simulated time per
-# CPU second and ours over stock's, and the heap's atoms, kinetic and rotational energy at the
-# run's end with ours over stock's.
+# CPU second and ours over stock's, the heap's atoms, kinetic and rotational energy at the
+# run's end with ours over stock's, and ours' largest overlap over the run (grain diameters).
 #   bench/pour.sh [--quick]    --quick: a hundredth of each run (checks the script)
 #   DT, RESOLUTION (50), OURS_ARGS (more -var settings for ours) override the defaults.
 set -euo pipefail
@@ -30,10 +30,11 @@ run() {
   (cd "$work" && "$lmp" -log "$work/$side.log" -echo none "$@" >/dev/null 2>&1) \
     || { echo "run failed ($side): $work/$side.log" >&2; tail -5 "$work/$side.log" >&2; exit 1; }
 }
-# Per run of a log: CPU seconds, then the last thermo line's atoms, ke and c_1.
+# Per run of a log: CPU seconds, then the last thermo line's atoms, ke, c_1 and (ours) its
+# largest overlap (c_health[4], in grain diameters; 0 for stock).
 runs() {
   awk '/^ *Step/ {thermo=1; next} thermo && $1 ~ /^[0-9]+$/ {last=$0}
-       /^Loop time of/ {t=$4; thermo=0} /% CPU use/ {split(last, f); print t*($1+0)/100, f[2], f[3], f[4]}' "$1"
+       /^Loop time of/ {t=$4; thermo=0} /% CPU use/ {split(last, f); print t*($1+0)/100, f[2], f[3], f[4], f[8]+0}' "$1"
 }
 
 echo "# $(date -u +%F) each run $span time units; stock dt 1e-4 ($stock_steps steps), ours dt $dt ($ours_steps steps); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -42,8 +43,8 @@ run ours -in "$here/../examples/lammps-granular/in.pour" -var steps "$ours_steps
     -var resting yes -var resolution "${RESOLUTION:-50}" ${OURS_ARGS:-}
 paste <(runs "$work/stock.log") <(runs "$work/ours.log") | awk -v span=$span '
   BEGIN {split("pour chute", name)
-         printf "%-6s %-9s %-9s %-7s %-7s %-7s %-10s %-10s %-6s %-9s %-9s %-6s\n", "run", "stock:s", "ours:s",
-                "x_stock", "atoms", "ours", "ke_stock", "ke_ours", "ratio", "rot_stock", "rot_ours", "ratio"}
+         printf "%-6s %-9s %-9s %-7s %-7s %-7s %-10s %-10s %-6s %-9s %-9s %-6s %-8s\n", "run", "stock:s", "ours:s",
+                "x_stock", "atoms", "ours", "ke_stock", "ke_ours", "ratio", "rot_stock", "rot_ours", "ratio", "overlap"}
   function ratio(a, b) {return b > 0 ? sprintf("%.2f", a / b) : "-"}
-  {printf "%-6s %-9.4g %-9.4g %-7.3g %-7d %-7d %-10.4g %-10.4g %-6s %-9.4g %-9.4g %-6s\n", name[NR], $1, $5,
-          $1 / $5, $2, $6, $3, $7, ratio($7, $3), $4, $8, ratio($8, $4)}'
+  {printf "%-6s %-9.4g %-9.4g %-7.3g %-7d %-7d %-10.4g %-10.4g %-6s %-9.4g %-9.4g %-6s %-8.3g\n", name[NR], $1, $6,
+          $1 / $6, $2, $7, $3, $8, ratio($8, $3), $4, $9, ratio($9, $4), $10}'
