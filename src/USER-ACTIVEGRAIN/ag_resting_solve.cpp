@@ -122,28 +122,21 @@ Vec3 RestingSolve::row_impulse(Row &row, const Vec3 &u, double &asked2)
 double RestingSolve::sweep()
 {
   std::vector<RigidBodyState> &bodies = *solver_bodies;
-  auto velocity = [&](const Row &row) {
-    return bodies[row.body2].velocity_at_arm(row.r2) - bodies[row.body1].velocity_at_arm(row.r1) + row.gain;
-  };
-  auto apply = [&](const Row &row, const Vec3 &J) {
-    bodies[row.body1].apply_impulse_at_arm(-J, row.r1);
-    bodies[row.body2].apply_impulse_at_arm(J, row.r2);
-  };
   double largest = 0.0;
   for (std::size_t i = 0; i < rows.size();) {
     Row &a = rows[i];
     if (a.with_next) {
       Row &b = rows[i + 1];
-      const Vec3 ua = velocity(a), ub = velocity(b);
+      const Vec3 ua = relative_velocity(bodies, a), ub = relative_velocity(bodies, b);
       double asked_a, asked_b;
       const Vec3 Ja = row_impulse(a, ua, asked_a), Jb = row_impulse(b, ub, asked_b);
-      apply(a, Ja);
-      apply(b, Jb);
+      apply_impulse(bodies, a, Ja);
+      apply_impulse(bodies, b, Jb);
       largest = std::max(largest, std::max(asked_a, asked_b));
       i += 2;
     } else {
       double asked;
-      apply(a, row_impulse(a, velocity(a), asked));
+      apply_impulse(bodies, a, row_impulse(a, relative_velocity(bodies, a), asked));
       largest = std::max(largest, asked);
       ++i;
     }

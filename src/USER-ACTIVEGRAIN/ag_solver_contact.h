@@ -31,14 +31,17 @@ struct SolverContact {
   TangentialStep tangential;
 };
 
-// The contact's relative velocity (body 2 minus body 1) at the moment it closes.
-inline Vec3 relative_velocity(const std::vector<RigidBodyState> &bodies, const SolverContact &c)
+// The contact's relative velocity (body 2 minus body 1) at the moment it closes. Contact: a
+// SolverContact, or what a solver keeps of one (its body1, body2, r1, r2 and gain).
+template <class Contact>
+inline Vec3 relative_velocity(const std::vector<RigidBodyState> &bodies, const Contact &c)
 {
   return bodies[c.body2].velocity_at_arm(c.r2) - bodies[c.body1].velocity_at_arm(c.r1) + c.gain;
 }
 
 // Impulse J on body 2 and -J on body 1 at the contact.
-inline void apply_impulse(std::vector<RigidBodyState> &bodies, const SolverContact &c, const Vec3 &J)
+template <class Contact>
+inline void apply_impulse(std::vector<RigidBodyState> &bodies, const Contact &c, const Vec3 &J)
 {
   bodies[c.body1].apply_impulse_at_arm(-J, c.r1);
   bodies[c.body2].apply_impulse_at_arm(J, c.r2);

@@ -2,7 +2,8 @@
 // last step also acts in the next initial_integrate. Across a run boundary or a restart, setup()
 // restores it instead of solving anew; it travels with the atoms (a per-atom store, fix
 // STORE/IMPULSE) as force, torque, their time step and the step they belong to. A time step
-// change rescales it, so that each impulse still acts in full. The global virial of that step comes back at setup too.
+// change rescales it, so that each impulse still acts in full. The global virial of that step
+// comes back at setup too.
 #pragma once
 
 #include "impulse_delivery.h"
