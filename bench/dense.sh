@@ -2,26 +2,31 @@
 # Benchmark (not a test): the cost of dense packings, side by side in one call. The channel of
 # examples/channel/in.channel-small, 30 x 15 mm (Lx 30e-3), rods at phi_r 0.0414, beads from a
 # fluid to the jammed corner of the phase diagram (total area fraction 0.70 to 0.862), each
-# grown once (-var start grow, the state written with -var state) and then run for TIME
-# simulated seconds from that state (1 rank, LAMMPS's loop time), with pair gran/impulse:
+# grown once (-var start grow, the state written with -var state), vibrated for WARM simulated
+# seconds (resting yes) into a second state, and then run for TIME simulated seconds from that
+# one (1 rank, LAMMPS's loop time), with pair gran/impulse:
 #   impacts   resting no (every contact through the compliant impacts)
 #   resting   resting yes (resting contacts solved together: docs/pair_gran_impulse.rst)
 #   base      another build's plugin, e.g. an earlier commit (BASE: its checkout with build/),
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
 # and the fluid reference of the issue: the same deck at its defaults (phi_b 0.75) from its own
-# created start. Prints CPU us per atom-step (the loop time times its CPU use, so that a busy
+# created start. The grow start leaves a packing at rest, without gravity or vibration: its first
+# few vibration periods cost more (bench/README.md), so the packings are timed from vibrated
+# states, as a long run spends its steps; the fluid settles into its steady cost from the start. Prints CPU us per atom-step (the loop time times its CPU use, so that a busy
 # machine slows every row alike) and that over the fluid's (of the same side).
 #   bench/dense.sh [--quick]         --quick: a few steps per run (checks the script)
 #   BASE=../ag-base bench/dense.sh   with a baseline: git worktree add ../ag-base 8ca6466 &&
 #                                    (cd ../ag-base && bash -c 'source tools/common.sh; prepare_build')
 #   BASE_ARGS="-var resting yes"     the baseline's deck variables (default: none)
-#   TIME (0.1) and PHI_B ("0.6586 0.7186 0.7586 0.7986 0.8203") override the defaults.
+#   TIME (0.1), WARM (0.05) and PHI_B ("0.6586 0.7186 0.7586 0.7986 0.8203") override the
+#   defaults; WARM=0 times the packings from their grown states.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 quick=0
 for a in "$@"; do case $a in --quick) quick=1 ;; *) echo "unknown argument $a" >&2; exit 2 ;; esac; done
 time=${TIME:-0.1}; [ $quick = 1 ] && time=${TIME:-0.002}
+warm=${WARM:-0.05}; [ $quick = 1 ] && warm=${WARM:-0.002}
 phis=(${PHI_B:-0.6586 0.7186 0.7586 0.7986 0.8203})
 phi_r=0.0414
 ours=$here/../build/lmp
@@ -32,25 +37,25 @@ trap 'rm -rf "$work"' EXIT
 loop() {    # CPU seconds (the loop's wall time times its CPU use), steps and atoms of the last loop
   awk '/^Loop time of/ {t=$4; s=$9; n=$12} /% CPU use/ {c=$1+0} END {if (t=="") exit 1; print t*c/100, s, n}' "$1"
 }
-# side lmp deck_dir log extra-args...: one timed run
+# side lmp deck_dir log end extra-args...: one timed run, to simulated time end
 run() {
-  local side=$1 lmp=$2 dir=$3 log=$4; shift 4
-  (cd "$dir" && "$lmp" -in in.channel-small -var Lx 30e-3 -var time "$time" -var dump 1.0 \
+  local side=$1 lmp=$2 dir=$3 log=$4 end=$5; shift 5
+  (cd "$dir" && "$lmp" -in in.channel-small -var Lx 30e-3 -var time "$end" -var dump 1.0 \
       -var out "$work/out-$side" -log "$log" -echo none "$@" >/dev/null 2>&1) \
     || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
 }
 cost() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v n="$n" 'BEGIN{printf "%.4g", t/(s*n)*1e6}'; }
-mkdir -p "$work"/out-{impacts,resting,base}
+mkdir -p "$work"/out-{impacts,resting,base,warm}
 
 sides=(impacts resting); [ -n "$base" ] && sides+=(base)
 lmp_of() { case $1 in base) echo "$base/build/lmp" ;; *) echo "$ours" ;; esac; }
 dir_of() { case $1 in base) echo "$base/examples/channel" ;; *) echo "$here/../examples/channel" ;; esac; }
 args_of() { case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; base) echo "${BASE_ARGS:-}" ;; esac; }
 
-echo "# $(date -u +%F) TIME $time s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# $(date -u +%F) TIME $time s after WARM $warm s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 declare -A fluid
 for side in "${sides[@]}"; do
-  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$work/fluid-$side.log" $(args_of $side)
+  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$work/fluid-$side.log" "$time" $(args_of $side)
   fluid[$side]=$(cost "$work/fluid-$side.log")
 done
 printf '%-8s %-8s %-7s %-6s' total phi_b phi_r atoms
@@ -64,6 +69,15 @@ for phi_b in "${phis[@]}"; do
       -log "$work/grow-$phi_b.log" -echo none >/dev/null 2>&1) \
     || { echo "grow failed: phi_b $phi_b" >&2; tail -5 "$work/grow-$phi_b.log" >&2; exit 1; }
   state=$(ls "$work/state-$phi_b"-*s.data.gz)
+  if awk -v w="$warm" 'BEGIN{exit !(w > 0)}'; then    # vibrated for WARM s into a state at that time
+    deck() { (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \
+        -var phi_r $phi_r -var resting yes -var dump 1.0 -var out "$work/out-warm" -echo none "$@" >/dev/null 2>&1); }
+    deck -var from "$state" -var time "$warm" -log "$work/warm-$phi_b.log" \
+      && deck -var continue "$work/out-warm/channel.restart.final" -var time "$warm" -var state "$work/warm-$phi_b" \
+          -log "$work/warm-state-$phi_b.log" \
+      || { echo "warm-up failed: phi_b $phi_b" >&2; tail -5 "$work/warm-$phi_b.log" >&2; exit 1; }
+    state=$(ls "$work/warm-$phi_b"-*s.data.gz)
+  fi
   atoms=$(gzip -dc "$state" | awk '/ atoms$/ && !n {n = $1} END {print n}')
   printf '%-8s %-8s %-7s %-6s' "$(awk -v a="$phi_b" -v b=$phi_r 'BEGIN{printf "%.3f", a+b}')" "$phi_b" $phi_r "$atoms"
   for side in "${sides[@]}"; do
@@ -71,7 +85,8 @@ for phi_b in "${phis[@]}"; do
       printf ' %-12s %-10s' - -; continue    # a build from before states: the fluid row only
     fi
     log="$work/$phi_b-$side.log"
-    run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" -var phi_b "$phi_b" -var phi_r $phi_r \
+    run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v a="$warm" -v b="$time" 'BEGIN{print a + b}')" \
+        -var phi_b "$phi_b" -var phi_r $phi_r \
         -var from "$state" $(args_of $side)
     c=$(cost "$log")
     printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.1f", a/b}')"

@@ -22,8 +22,8 @@ STATE_STEP = 500      # channel.restart.1 of a run dumping every 0.005 s (restar
 END = 0.06
 MAX_STATE_BYTES = 5_000_000
 
-# step time c_order c_order[5] c_order[6] c_tsphere cpu (in.channel's thermo)
-THERMO = re.compile(r"^\s+(\d+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+(\d+)\s+([\d.e+-]+)\s+[\d.e+-]+\s*$", re.M)
+# step time c_order c_order[5] c_order[6] c_tsphere cpu, then the soak columns (in.channel's thermo)
+THERMO = re.compile(r"^\s+(\d+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+(\d+)\s+([\d.e+-]+)\s+[\d.e+-]+(?:[ \t]+[\d.e+-]+)*[ \t]*$", re.M)
 WROTE = re.compile(r"^ActiveGrain state: wrote (\S+) \(time (\S+) s, step (\d+), (\d+) beads, (\d+) rods\)$", re.M)
 CONTINUING = re.compile(r"^ActiveGrain state: continuing from (\S+) at time (\S+) s, step (\d+)$", re.M)
 HEADER = re.compile(r"^ActiveGrain state: time (\S+) s step (\d+) geometry channel ")
