@@ -89,7 +89,10 @@ for phi_b in "${phis[@]}"; do
         -var phi_b "$phi_b" -var phi_r $phi_r \
         -var from "$state" $(args_of $side)
     c=$(cost "$log")
+    [ "$side" = resting ] && densest=$c
     printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.1f", a/b}')"
   done
   echo
 done
+# the cost of the densest packing with resting yes over the deck's default fluid (resting no)
+echo "# densest (resting yes) over the default fluid (resting no): $(awk -v a="$densest" -v b="${fluid[impacts]}" 'BEGIN{printf "%.2f", a/b}')"
