@@ -10,11 +10,12 @@
 #   base      another build's plugin, e.g. an earlier commit (BASE: its checkout with build/),
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
-# and the fluid reference of the issue: the same deck at its defaults (phi_b 0.75) from its own
-# created start. The grow start leaves a packing at rest, without gravity or vibration: its first
-# few vibration periods cost more (bench/README.md), so the packings are timed from vibrated
-# states, as a long run spends its steps; the fluid settles into its steady cost from the start. Prints CPU us per atom-step (the loop time times its CPU use, so that a busy
-# machine slows every row alike) and that over the fluid's (of the same side).
+# and the fluid reference: the same deck at its defaults (phi_b 0.75) from its own created start.
+# The grow start leaves a packing at rest, without gravity or vibration: its first few vibration
+# periods cost more (bench/README.md), so the packings are timed from vibrated states, as a long
+# run spends its steps; the fluid settles into its steady cost from the start. Prints CPU us per
+# atom-step (the loop time times its CPU use, so that a busy machine slows every row alike) and
+# that over the fluid's (of the same side).
 #   bench/dense.sh [--quick]         --quick: a few steps per run (checks the script)
 #   BASE=../ag-base bench/dense.sh   with a baseline: git worktree add ../ag-base 8ca6466 &&
 #                                    (cd ../ag-base && bash -c 'source tools/common.sh; prepare_build')
@@ -44,6 +45,12 @@ run() {
       -var out "$work/out-$side" -log "$log" -echo none "$@" >/dev/null 2>&1) \
     || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
 }
+# warm_deck phi_b extra-args...: ours at resting yes, untimed (the warm-up and its state)
+warm_deck() {
+  local phi_b=$1; shift
+  (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \
+      -var phi_r $phi_r -var resting yes -var dump 1.0 -var out "$work/out-warm" -echo none "$@" >/dev/null 2>&1)
+}
 cost() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v n="$n" 'BEGIN{printf "%.4g", t/(s*n)*1e6}'; }
 mkdir -p "$work"/out-{impacts,resting,base,warm}
 
@@ -70,11 +77,9 @@ for phi_b in "${phis[@]}"; do
     || { echo "grow failed: phi_b $phi_b" >&2; tail -5 "$work/grow-$phi_b.log" >&2; exit 1; }
   state=$(ls "$work/state-$phi_b"-*s.data.gz)
   if awk -v w="$warm" 'BEGIN{exit !(w > 0)}'; then    # vibrated for WARM s into a state at that time
-    deck() { (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \
-        -var phi_r $phi_r -var resting yes -var dump 1.0 -var out "$work/out-warm" -echo none "$@" >/dev/null 2>&1); }
-    deck -var from "$state" -var time "$warm" -log "$work/warm-$phi_b.log" \
-      && deck -var continue "$work/out-warm/channel.restart.final" -var time "$warm" -var state "$work/warm-$phi_b" \
-          -log "$work/warm-state-$phi_b.log" \
+    warm_deck "$phi_b" -var from "$state" -var time "$warm" -log "$work/warm-$phi_b.log" \
+      && warm_deck "$phi_b" -var continue "$work/out-warm/channel.restart.final" -var time "$warm" \
+          -var state "$work/warm-$phi_b" -log "$work/warm-state-$phi_b.log" \
       || { echo "warm-up failed: phi_b $phi_b" >&2; tail -5 "$work/warm-$phi_b.log" >&2; exit 1; }
     state=$(ls "$work/warm-$phi_b"-*s.data.gz)
   fi
