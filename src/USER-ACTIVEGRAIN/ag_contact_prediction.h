@@ -4,7 +4,7 @@
 // Velocities are those of the last drift, half a step before the step's start; a contact closes
 // a time t_c after the start (0 for an overlap, at most dt). By then the atoms have gained their
 // relative acceleration (gravity) times dt/2 + t_c, and a wall its own acceleration times t_c.
-// An overlap must open at least at beta * overlap / dt.
+// An overlap deeper than slop must open at least at beta * (overlap - slop) / dt.
 #pragma once
 
 #include "ag_math.h"
@@ -45,7 +45,7 @@ struct ContactPrediction {
 
 // The contact of a gap at relative velocity u (body 2 minus body 1 at the contact, normal n from
 // 1 to 2), with the relative acceleration of the atoms (2 minus 1) and of a wall (body 1).
-ContactPrediction predict_contact(double gap, const Vec3 &u, const Vec3 &n, double dt, double beta,
+ContactPrediction predict_contact(double gap, const Vec3 &u, const Vec3 &n, double dt, double beta, double slop,
                                   const Vec3 &atom_acceleration, const Vec3 &wall_acceleration = Vec3());
 
 }    // namespace ActiveGrain

@@ -19,10 +19,12 @@ using ActiveGrain::Vec3;
 // The near pairs are those within this fraction of the neighbor skin.
 static constexpr double NEAR_MARGIN = 0.25;
 
-void ContactAssembly::init(double overlap_beta, ContactOrder contact_order, double **pair_restitution,
-                           double **pair_friction, const std::vector<ImpulseWall *> &wall_fixes)
+void ContactAssembly::init(double overlap_beta, double overlap_slop, ContactOrder contact_order,
+                           double **pair_restitution, double **pair_friction,
+                           const std::vector<ImpulseWall *> &wall_fixes)
 {
   beta = overlap_beta;
+  slop = overlap_slop;
   order = contact_order;
   restitution = pair_restitution;
   friction = pair_friction;
@@ -113,7 +115,7 @@ void ContactAssembly::add_contact(int body1, int body2, const AtomContact &atoms
 {
   const Vec3 u = solver.body(body2).velocity_at_arm(r2) - solver.body(body1).velocity_at_arm(r1);
   const ActiveGrain::ContactPrediction prediction =
-      ActiveGrain::predict_contact(gap, u, n, update->dt, beta, atom_acceleration, wall_acceleration);
+      ActiveGrain::predict_contact(gap, u, n, update->dt, beta, slop, atom_acceleration, wall_acceleration);
   if (!prediction.closes) return;
   const ContactIdentity identity = identity_of(atoms);
   // The shuffled order: a hash of the step and the contact's identity, the same on any rank.

@@ -50,7 +50,7 @@ class ContactAssembly : protected Pointers {
   }
 
   // The pair style's settings and coefficients (per type pair), and the wall fixes.
-  void init(double beta, ContactOrder order, double **restitution, double **friction,
+  void init(double beta, double slop, ContactOrder order, double **restitution, double **friction,
             const std::vector<ImpulseWall *> &walls);
   // Each atom's spin speed and this step's extremes; maxrad: the neighbor-cutoff radius per type.
   void scan_atoms(const double *maxrad);
@@ -97,7 +97,8 @@ class ContactAssembly : protected Pointers {
   SolverBodies &bodies;
   const ContactRanks &ranks;
   NearPairs &near;
-  double beta = 0.0;    // overlaps leave at >= beta * overlap / dt
+  double beta = 0.0;    // overlaps leave at >= beta * (overlap - slop) / dt
+  double slop = 0.0;
   ContactOrder order = ContactOrder::SHUFFLE;
   double **restitution = nullptr, **friction = nullptr;
   std::vector<ImpulseWall *> walls;

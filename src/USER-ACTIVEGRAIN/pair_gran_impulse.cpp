@@ -35,7 +35,7 @@ static constexpr double DEFAULT_BETA = 0.2;
 static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution).
-static constexpr int RESTART_FORMAT = -4;
+static constexpr int RESTART_FORMAT = -5;
 // The units check (check_deck): in lj units, grains smaller than this are SI numbers when gravity
 // or the plates' acceleration is >= 1 or the skin is this many diameters; in si units, grains
 // this large with gravity below SI_SMALL_GRAVITY are lj numbers.
@@ -45,7 +45,7 @@ static constexpr double SI_LARGE_DIAMETER = 0.5;
 static constexpr double SI_SMALL_GRAVITY = 2.0;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), beta(DEFAULT_BETA), order(ContactOrder::SHUFFLE), resting(0.0), restitution(nullptr), friction(nullptr),
+    Pair(lmp), beta(DEFAULT_BETA), slop(0.0), order(ContactOrder::SHUFFLE), resting(0.0), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), ghost_pairs(false), ranks(lmp), near(lmp), bodies(lmp, solver, ranks),
     assembly(lmp, solver, bodies, ranks, near), delivery(lmp), carry(lmp), diagnostics(lmp, STYLE)
 {
@@ -88,12 +88,13 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [order shuffle|tag|reverse] [window W|step] [resting yes|no|V]
-   [tolerance T]; every setting not given takes its default */
+/* pair_style gran/impulse [resolution N] [beta B] [slop S] [order shuffle|tag|reverse] [window W|step]
+   [resting yes|no|V] [tolerance T] [max_sweeps N]; every setting not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
   solver_settings = ActiveGrain::ContactSolver::Settings();
   beta = DEFAULT_BETA;
+  slop = 0.0;
   order = ContactOrder::SHUFFLE;
   resting = 0.0;
   bool tolerance_given = false;
@@ -115,6 +116,9 @@ void PairGranImpulse::settings(int narg, char **arg)
     } else if (key == "beta") {
       beta = utils::numeric(FLERR, value, false, lmp);
       if (beta < 0.0 || beta > 1.0) error->all(FLERR, "{}: beta must be in [0, 1]", STYLE);
+    } else if (key == "slop") {
+      slop = utils::numeric(FLERR, value, false, lmp);
+      if (!(slop >= 0.0)) error->all(FLERR, "{}: slop must be >= 0 (found {})", STYLE, value);
     } else if (key == "order") {
       if (value == "shuffle") order = ContactOrder::SHUFFLE;
       else if (value == "tag") order = ContactOrder::TAG;
@@ -130,12 +134,18 @@ void PairGranImpulse::settings(int narg, char **arg)
       if (!(solver_settings.resting_tolerance > 0.0 && solver_settings.resting_tolerance < 1.0))
         error->all(FLERR, "{}: tolerance must be in (0, 1) (found {})", STYLE, value);
       tolerance_given = true;
+    } else if (key == "max_sweeps") {
+      solver_settings.max_resting_sweeps = utils::inumeric(FLERR, value, false, lmp);
+      if (solver_settings.max_resting_sweeps < 1)
+        error->all(FLERR, "{}: max_sweeps must be >= 1 (found {})", STYLE, value);
+      tolerance_given = true;
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
   }
   if (tolerance_given && resting == 0.0)
-    error->all(FLERR, "{}: keyword tolerance sets the resting solve's: it needs resting yes or a speed", STYLE);
+    error->all(FLERR, "{}: keywords tolerance and max_sweeps set the resting solve's: they need resting yes or a "
+               "speed", STYLE);
 }
 
 /* pair_coeff I J e mu */
@@ -173,7 +183,7 @@ void PairGranImpulse::init_style()
   request_neighbors();
   find_type_radii();
   check_deck();
-  assembly.init(beta, order, restitution, friction, walls);
+  assembly.init(beta, slop, order, restitution, friction, walls);
 }
 
 // What this style cannot do, refused before a run: other integrators than velocity Verlet, and
@@ -475,8 +485,8 @@ void PairGranImpulse::read_restart(FILE *fp)
 }
 
 // Settings in restart files: a negative format number first (files of the first format begin with
-// the resolution, which is positive), then resolution, beta, order, the window, resting and the
-// resting solve's tolerance.
+// the resolution, which is positive), then resolution, beta, order, the window, resting, the
+// resting solve's tolerance, the slop and the resting solve's sweep cap.
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
   const int order_code = static_cast<int>(order);
@@ -487,12 +497,15 @@ void PairGranImpulse::write_restart_settings(FILE *fp)
   fwrite(&solver_settings.window, sizeof(double), 1, fp);
   fwrite(&resting, sizeof(double), 1, fp);
   fwrite(&solver_settings.resting_tolerance, sizeof(double), 1, fp);
+  fwrite(&slop, sizeof(double), 1, fp);
+  fwrite(&solver_settings.max_resting_sweeps, sizeof(int), 1, fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
 {
   int order_code = 0;
   resting = 0.0;
+  slop = 0.0;
   solver_settings = ActiveGrain::ContactSolver::Settings();
   if (comm->me == 0) {
     int format = 0;
@@ -505,13 +518,19 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
     if (format < 0) utils::sfread(FLERR, &solver_settings.window, sizeof(double), 1, fp, nullptr, error);
     if (format < -2) utils::sfread(FLERR, &resting, sizeof(double), 1, fp, nullptr, error);
     if (format < -3) utils::sfread(FLERR, &solver_settings.resting_tolerance, sizeof(double), 1, fp, nullptr, error);
+    if (format < -4) {
+      utils::sfread(FLERR, &slop, sizeof(double), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &solver_settings.max_resting_sweeps, sizeof(int), 1, fp, nullptr, error);
+    }
   }
   MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
   MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&slop, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
   MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&solver_settings.resting_tolerance, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&solver_settings.max_resting_sweeps, 1, MPI_INT, 0, world);
   order = static_cast<ContactOrder>(order_code);
 }
 

@@ -86,7 +86,8 @@ class PairGranImpulse : public Pair {
 
   // settings
   ActiveGrain::ContactSolver::Settings solver_settings;
-  double beta;    // overlaps leave at >= beta * overlap / dt
+  double beta;    // overlaps leave at >= beta * (overlap - slop) / dt
+  double slop;
   ContactOrder order;
   // Resting contacts solved together (ag_resting_solve.h) below this speed; AUTO_RESTING: from
   // gravity and the walls' vibration; 0: none.

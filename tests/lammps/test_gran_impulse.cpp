@@ -158,11 +158,15 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse order random").find("order must be"), std::string::npos);
-  EXPECT_NE(error_of("pair_style gran/impulse tolerance 1e-2").find("keyword tolerance sets the resting solve's"),
+  EXPECT_NE(error_of("pair_style gran/impulse tolerance 1e-2").find("keywords tolerance and max_sweeps set"),
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse resting yes tolerance 0").find("tolerance must be in (0, 1)"),
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse window -1e-6").find("Pair gran/impulse: window must be"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse slop -1e-6").find("Pair gran/impulse: slop must be >= 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_style gran/impulse resting yes max_sweeps 0").find("max_sweeps must be >= 1"),
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse window").find("missing value after keyword window"),
             std::string::npos);

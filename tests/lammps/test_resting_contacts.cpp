@@ -163,11 +163,11 @@ class RestingRing : public BeadBox {
   }
 };
 
-TEST_F(RestingRing, TheToleranceTravelsInRestartFiles)
+TEST_F(RestingRing, TheToleranceAndTheSweepCapTravelInRestartFiles)
 {
   // A ring of 10 touching beads around the periodic box, jostled along it slower than the resting
-  // speed: one resting solve from zero, whose sweeps depend on the tolerance. Read back from a
-  // restart file, the style solves with the tolerance it was given, not the default.
+  // speed: one resting solve from zero, whose sweeps depend on the tolerance and the cap. Read back
+  // from a restart file, the style solves with the settings it was given, not the defaults.
   for (int i = 0; i < 10; ++i) bead(0.0005 + 0.001 * i, 0.005, 0.001, 0.01 * std::sin(2.3 * i + 0.5), 0, 0);
   command(std::string(PAIR) + "pair_style gran/impulse resting 0.05 tolerance 0.1\n" + STYLES +
           "run 0 post no\nwrite_restart test_resting_ring.restart");
@@ -176,9 +176,89 @@ TEST_F(RestingRing, TheToleranceTravelsInRestartFiles)
   const double restarted = sweeps_of_next_step();
   read_ring("pair_style gran/impulse resting 0.05\n");
   const double by_default = sweeps_of_next_step();
-  std::printf("[ measured ] sweeps at tolerance 0.1: %g, after a restart %g; at the default tolerance %g\n", given,
-              restarted, by_default);
+  read_ring("pair_style gran/impulse resting 0.05 max_sweeps 3\n");
+  command("write_restart test_resting_ring_capped.restart");
+  const double capped = sweeps_of_next_step();
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command(std::string("read_restart test_resting_ring_capped.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\n") +
+          STYLES);
+  const double capped_restarted = sweeps_of_next_step();
+  std::printf("[ measured ] sweeps at tolerance 0.1: %g, after a restart %g; at the default tolerance %g; capped at "
+              "3: %g, after a restart %g\n", given, restarted, by_default, capped, capped_restarted);
   EXPECT_GT(given, 1.0);
   EXPECT_EQ(restarted, given);
   EXPECT_GT(by_default, given);
+  EXPECT_EQ(capped, 3.0);
+  EXPECT_EQ(capped_restarted, 3.0);
+}
+
+class RestingPile : public BeadBox {
+ protected:
+  static constexpr double DT = 1e-4;
+  void pile(const std::string &pair_style, int steps)
+  {
+    bead(0.0045, 0.005, 0.0005, 0, 0, 0);
+    bead(0.0055, 0.005, 0.0005, 0, 0, 0);
+    bead(0.005, 0.005, 0.0005 + 0.001 * std::sqrt(0.75), 0, 0, 0);
+    command("pair_style gran/impulse resting yes " + pair_style + "\npair_coeff * * 0.3 0.5\n"
+            "timestep 1e-4\nfix nve all nve/sphere\nfix g all gravity 9.81 vector 0 0 -1\n"
+            "fix plate all wall/impulse zlo 0.0 e 0.3 mu 0.5\ncompute solver all pair gran/impulse\n"
+            "variable overlap equal c_solver[" + std::to_string(LAMMPS_NS::PairGranImpulse::LARGEST_OVERLAP + 1) + "]\n"
+            "thermo_style custom step ke v_overlap\nrun " + std::to_string(steps) + " post no");
+  }
+  double fastest()
+  {
+    double largest = 0.0;
+    for (int i = 0; i < lmp->atom->nlocal; ++i)
+      for (int k = 0; k < 3; ++k) largest = std::max(largest, std::fabs(lmp->atom->v[i][k]));
+    return largest;
+  }
+};
+
+TEST_F(RestingPile, WithinItsSlopAPileRestsWithoutPushes)
+{
+  // Without slop, the resting solve's tolerance lets gravity press each contact a little deeper in
+  // a step and the overlap push opens it again: the beads keep a floor of velocity. Overlaps within
+  // the slop touch and are not pushed: the pile settles into them, and only their excess is pushed.
+  pile("", 1000);
+  const double pushed = fastest(), pushed_overlap = value("v_overlap");
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command(BOX);
+  const double slop = 1e-6;
+  pile(fmt::format("slop {}", slop), 1000);
+  const double still = fastest(), still_overlap = value("v_overlap");
+  std::printf("[ measured ] a pile after 0.1 s: fastest velocity component %.3g m/s without slop, %.3g m/s with "
+              "slop 1 um (g dt = %.3g m/s); largest overlap %.3g and %.3g m\n",
+              pushed, still, 9.81 * DT, pushed_overlap, still_overlap);
+  EXPECT_GT(pushed, 0.01 * 9.81 * DT);
+  EXPECT_LT(still, 0.2 * pushed);
+  EXPECT_LT(still_overlap, 1.5 * slop);
+}
+
+TEST_F(RestingPile, TheSlopTravelsInRestartFiles)
+{
+  // The pile with its contacts at the slop: read back without a pair_style command, the style
+  // keeps its slop (without it, the next step would push the overlaps open).
+  pile("slop 1e-6", 1000);
+  command("write_restart test_resting_pile.restart\nrun 20 post no");
+  const double straight = lmp->atom->v[lmp->atom->map(1)][2];
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command("read_restart test_resting_pile.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\ntimestep 1e-4\n"
+          "fix nve all nve/sphere\nfix g all gravity 9.81 vector 0 0 -1\n"
+          "fix plate all wall/impulse zlo 0.0 e 0.3 mu 0.5\nrun 20 post no");
+  const double restarted = lmp->atom->v[lmp->atom->map(1)][2];
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command("read_restart test_resting_pile.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\ntimestep 1e-4\n"
+          "pair_style gran/impulse resting yes\npair_coeff * * 0.3 0.5\n"
+          "fix nve all nve/sphere\nfix g all gravity 9.81 vector 0 0 -1\n"
+          "fix plate all wall/impulse zlo 0.0 e 0.3 mu 0.5\nrun 20 post no");
+  const double without_slop = lmp->atom->v[lmp->atom->map(1)][2];
+  std::printf("[ measured ] bead 1's vz 20 steps after the restart file: %.6g m/s straight on, %.6g restarted, "
+              "%.6g restarted without slop\n", straight, restarted, without_slop);
+  EXPECT_NEAR(restarted, straight, 1e-12);
+  EXPECT_GT(std::fabs(without_slop - straight), 1e-9);
 }
