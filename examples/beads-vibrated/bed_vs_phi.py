@@ -24,7 +24,7 @@ A_OMEGA = 4e-5 * 2 * np.pi * 200   # plate speed amplitude (m/s)
 FRAME = 0.1                     # s between frames
 
 
-def run(lmp, phi, rough, length, time, nx, ny, dt=1e-5):
+def run(lmp, phi, rough, length, time, nx, ny, dt=1e-5, resting="no", seed=4928):
     """Frames (list of (positions unwrapped (n,2), velocities (n,2))) and the box (Lx, Ly)."""
     every = int(round(FRAME / dt))
     with tempfile.TemporaryDirectory() as tmp:
@@ -37,7 +37,8 @@ def run(lmp, phi, rough, length, time, nx, ny, dt=1e-5):
                     f"run {int(round(time / dt))}\n")
         subprocess.run([lmp, "-in", deck, "-log", "none", "-screen", "none", "-var", "phi", repr(phi),
                         "-var", "rough", repr(rough), "-var", "rough_length", repr(length),
-                        "-var", "nx", str(nx), "-var", "ny", str(ny), "-var", "dt", repr(dt)], check=True)
+                        "-var", "nx", str(nx), "-var", "ny", str(ny), "-var", "dt", repr(dt), "-var", "resting", resting, "-var", "seed", str(seed)],
+                       check=True)
         return read_dump(dump)
 
 
@@ -110,13 +111,15 @@ def main():
     ap.add_argument("--nx", type=int, default=24)
     ap.add_argument("--ny", type=int, default=14)
     ap.add_argument("--dt", type=float, default=1e-5)
+    ap.add_argument("--seed", type=int, default=4928, help="the deck's seed (the beads' start heights)")
+    ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, no or a speed)")
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     a = ap.parse_args()
-    print(f"Beads alone, {2 * a.nx * a.ny} beads, rough {a.rough:g} (L {a.length * 1e3:g} mm), {a.time:g} s, dt {a.dt:g}\n")
+    print(f"Beads alone, {2 * a.nx * a.ny} beads, rough {a.rough:g} (L {a.length * 1e3:g} mm), {a.time:g} s, dt {a.dt:g}, resting {a.resting}\n")
     print("| phi_b | v_h/(A omega), first third | last third | abs(psi6) | local abs(psi6_j) | eta6 | MSD 1 s (d^2) "
           "| MSD last half (d^2) |\n|---|---|---|---|---|---|---|---|")
     for phi in (float(s) for s in a.phi.split(",")):
-        m = measure(*run(a.lmp, phi, a.rough, a.length, a.time, a.nx, a.ny, a.dt))
+        m = measure(*run(a.lmp, phi, a.rough, a.length, a.time, a.nx, a.ny, a.dt, a.resting, a.seed))
         print(f"| {phi:g} | {m['vh_first']:.4f} | {m['vh_last']:.4f} | {m['psi6']:.2f} | {m['psi6_local']:.2f} "
               f"| {m['eta6']:.2f} | {m['msd1']:.3g} | {m['msd_half']:.3g} |", flush=True)
 
