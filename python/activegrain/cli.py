@@ -198,7 +198,18 @@ def cmd_condensate(args, out):
                 row["drift_speed"] = (analysis.arc_drift(fr, before, geom, arcs[k - args.lag])
                                       / (fr.time - before.time))
         return row
-    _print_table(io.run_frames(frames, single_frame, lag=args.lag), out)
+    rows = io.run_frames(frames, single_frame, lag=args.lag)
+    _print_table(rows, out)
+    if args.traps is not None:
+        column = lambda name: [r.get(name, float("nan")) for r in rows]
+        spans = analysis.trap_spans(column("time"), np.nan_to_num(column("rods_at_start")),
+                                    np.nan_to_num(column("rods_at_stop")), column("drift_speed"),
+                                    args.traps, args.trap_drift, args.trap_gap)
+        for first, last in spans:
+            held = " (still trapped at the last frame)" if last == rows[-1]["time"] else ""
+            out.write(f"# trapped from {first:g} to {last:g} ({last - first:g}){held}\n")
+        if not spans:
+            out.write("# never trapped\n")
 
 
 def cmd_motility(args, out):
@@ -425,6 +436,14 @@ def build_parser():
     p.add_argument("--lag", type=int, default=1, help="drift against the frame this many frames earlier")
     p.add_argument("--reach", type=float, default=1.0,
                    help="rods pressing on an end: centres within this many rod lengths of it")
+    p.add_argument("--traps", type=int, metavar="N",
+                   help="after the table, the spans of time in which at least N rods press on each end "
+                        "and the arc drifts no faster than --trap-drift (one line each, '# trapped from ...')")
+    p.add_argument("--trap-drift", type=float, default=0.3,
+                   help="--traps: the fastest drift of a trapped arc (dump length units, after "
+                        "--length-unit, per time unit)")
+    p.add_argument("--trap-gap", type=float, default=5.0,
+                   help="--traps: trapped frames at most this far apart in time are one span")
     p.set_defaults(func=cmd_condensate)
 
     p = _command(sub, "motility", "rods' speed along their axes, mean square displacement, persistence time",

@@ -212,6 +212,16 @@ def test_condensate_command(tmp_path):
     assert rc == 0, text
     row = dict(zip(head.split(), text.splitlines()[2].split()))
     assert (int(row["rods_at_start"]), int(row["rods_at_stop"])) == (0, 0)
+    # both frames trapped (10 rods at each end, drift 0.43 d/s below 0.5); below 11 rods never
+    rc, text = run(["condensate", str(dump), "--geometry", "annulus", "--centre", "0", "0", "--r-in", "15e-3",
+                    "--r-out", "28e-3", "--length-unit", "1e-3", "--timestep", "1e-4", "--threshold", "0.6",
+                    "--traps", "10", "--trap-drift", "0.5"])
+    assert rc == 0, text
+    assert text.splitlines()[-1] == "# trapped from 0 to 1 (1) (still trapped at the last frame)"
+    rc, text = run(["condensate", str(dump), "--geometry", "annulus", "--centre", "0", "0", "--r-in", "15e-3",
+                    "--r-out", "28e-3", "--length-unit", "1e-3", "--timestep", "1e-4", "--threshold", "0.6",
+                    "--traps", "11"])
+    assert text.splitlines()[-1] == "# never trapped"
     rc, _ = run(["condensate", str(dump), "--length-unit", "1e-3", "--r-out", "28e-3", "--lag", "0"])
     assert rc == 1
     rc, _ = run(["condensate", str(dump), "--length-unit", "1e-3", "--r-out", "28e-3", "--reach", "0"])

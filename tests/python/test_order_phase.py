@@ -417,3 +417,15 @@ def test_dense_arc_wraps_round_and_needs_an_annulus():
     assert A.dense_arc(lobed, ann, threshold=0.6) == arc
     with pytest.raises(ValueError, match="only for an annulus"):
         A.dense_arc(fr, geometry_from_box(S.channel_box(40, 10)))
+
+
+def test_trap_spans_join_short_gaps_and_end_where_a_layer_leaves_or_the_arc_moves():
+    t = np.arange(12.0)
+    start = [0, 4, 4, 4, 1, 4, 4, 4, 4, 4, 0, 0]      # frame 4: a layer lost rods for a moment
+    stop = [5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5]
+    drift = [np.nan, 0.1, -0.2, 0.1, 0.1, 0.0, 0.1, 0.9, 0.1, 0.1, 0.1, 0.1]   # frame 7: pushed round
+    assert A.trap_spans(t, start, stop, drift, min_rods=3, max_drift=0.3, max_gap=2.0) == [(1.0, 9.0)]
+    # a shorter allowed gap splits the span where it missed
+    assert A.trap_spans(t, start, stop, drift, min_rods=3, max_drift=0.3, max_gap=1.0) == [(1.0, 3.0), (5.0, 6.0),
+                                                                                            (8.0, 9.0)]
+    assert A.trap_spans(t, start, stop, drift, min_rods=6) == []

@@ -3,7 +3,7 @@ condensate of an annulus. Every public name of the submodules is also here
 (``analysis.classify_phase``)."""
 from .area_fractions import (COUNTS, SPECIES, Profile, area_fraction_map, area_fraction_profile,
                              area_samples, default_spacing, global_area_fractions)
-from .condensate import Arc, arc_drift, capping_rods, dense_arc
+from .condensate import Arc, arc_drift, capping_rods, dense_arc, trap_spans
 from .layers import (LayerSides, find_layers, fit_layer_exponential, interfacial_length, layer_drive,
                      layer_height_modes, layer_profile, layer_sides)
 from .order import (alignment_of, gradient_alignment, nematic_order, polar_order, polarization, rod_environment,

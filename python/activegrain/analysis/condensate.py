@@ -93,3 +93,23 @@ def capping_rods(frame, annulus, arc, reach=1.0):
     near_start = np.abs(arc.offset(theta, "start")) * radius <= reach
     near_stop = np.abs(arc.offset(theta, "stop")) * radius <= reach
     return int(np.sum(near_start & (heading > 0.5))), int(np.sum(near_stop & (heading < -0.5)))
+
+
+def trap_spans(times, rods_at_start, rods_at_stop, drift, min_rods=3, max_drift=0.3, max_gap=5.0):
+    """The spans of time in which a condensate is trapped (the paper's Fig. 3c): per frame, at
+    least ``min_rods`` rods press on each end of the arc and its beads drift round the ring no
+    faster than ``max_drift`` (length per time; NaN drift, as in a first frame, counts as held).
+    Trapped frames at most ``max_gap`` apart in time are one span (a layer that loses a few
+    rods for a moment does not end it). Returns ``[(first, last), ...]``: the times of
+    each span's first and last trapped frame."""
+    times = np.asarray(times, float)
+    drift = np.asarray(drift, float)
+    held = ((np.asarray(rods_at_start) >= min_rods) & (np.asarray(rods_at_stop) >= min_rods)
+            & ~(np.abs(drift) > max_drift))
+    spans = []
+    for t in times[held]:
+        if spans and t - spans[-1][1] <= max_gap + 1e-9 * max(1.0, abs(t)):
+            spans[-1][1] = t
+        else:
+            spans.append([t, t])
+    return [(float(a), float(b)) for a, b in spans]
