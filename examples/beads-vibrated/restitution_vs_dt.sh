@@ -4,13 +4,13 @@
 # speeds ~4.4 cm/s, like the beads' play between the plates; several heights sample the phase
 # of the impact within a step). Prints dt, steps per 200 Hz period, the e_eff range and the
 # largest relative error.
-#   examples/beads-vibrated/restitution_vs_dt.sh [path/to/lmp]   (default: build/lmp)
+#   examples/beads-vibrated/restitution_vs_dt.sh [path/to/lmp]   (default: build/lmp; DTS="..." other steps)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 lmp=${1:-$here/../../build/lmp}
 e=0.3
 printf '%-8s %-14s %-10s %-10s %s\n' dt steps/period e_eff_min e_eff_max max_rel_error
-for dt in 1e-6 2e-6 5e-6 1e-5 2e-5 5e-5 1e-4; do
+for dt in ${DTS:-1e-6 2e-6 5e-6 1e-5 2e-5 5e-5 1e-4}; do
   for h in 0.80e-4 0.87e-4 0.93e-4 1.00e-4 1.07e-4 1.13e-4 1.20e-4; do
     "$lmp" -in "$here/in.bounce" -var dt $dt -var e $e -var h $h -log none -echo none 2>/dev/null |
       awk '/^ +Step/ {on=1; next} /^Loop time/ {on=0}
