@@ -200,6 +200,17 @@ def test_channel_continues_from_its_restart_file(tmp_path, ranks):
         assert continued[step][1:] == pytest.approx(whole[step][1:], rel=1e-6), step
 
 
+def test_channel_continued_at_another_time_step_ends_at_the_asked_time(tmp_path):
+    """-var continue with -var dt twice the run's: the run goes on from the file's time (0.05 s, step
+    500) to the asked end time at the new step (50 steps of 2e-4 s to 0.06 s), not to the step
+    number that the end time would be at the old one."""
+    channel_thermo(tmp_path / "whole", 1)
+    restart = tmp_path / "whole" / "channel.restart.1"
+    continued = channel_thermo(tmp_path / "continued", 1, "-var", "continue", str(restart), "-var", "dt", "2e-4")
+    assert sorted(continued) == [500, 525, 550]
+    assert continued[550][0] == pytest.approx(0.06, rel=1e-12)
+
+
 # A bead thrown at a cusp of the scalloped wall, where a lobe meets the rim. LAMMPS's union region
 # drops the contacts there (both circles' nearest points lie inside the other circle): without the
 # posts that round the cusps the bead flies through the wall and is lost.
