@@ -17,7 +17,8 @@
 #   bench/run.sh [--quick] [--np4] [path/to/lmp]
 #     --quick  a few hundred steps per run (seconds in all): checks the script, not the machine
 #     --np4    also mpirun --oversubscribe -np 4
-#   WARM (0.05) and TIME (0.1) override the simulated seconds; CASES="channel box" picks cases.
+#   WARM (0.05) and TIME (0.1) override the simulated seconds; CASES="channel box" picks cases;
+#   DT_OURS (1e-4) and OURS_ARGS (more -var settings, e.g. "-var resting yes") change ours.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 quick=0; nps=(1 2); lmp=$here/../build/lmp
@@ -32,7 +33,7 @@ lmp=$(cd "$(dirname "$lmp")" && pwd)/$(basename "$lmp")   # absolute: the runs s
 warm=${WARM:-0.05}; time=${TIME:-0.1}
 [ $quick = 1 ] && { warm=${WARM:-0}; time=${TIME:-0.002}; }
 cases=(${CASES:-beads channel box})
-dt_ours=1.0e-4; dt_stock=${DT_STOCK:-1.25e-7}; kn=${KN:-3.2e5}; xgt=${XGT:-0}
+dt_ours=${DT_OURS:-1.0e-4}; dt_stock=${DT_STOCK:-1.25e-7}; kn=${KN:-3.2e5}; xgt=${XGT:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$here"
@@ -80,7 +81,7 @@ for c in "${cases[@]}"; do
     row "$c" "$np" stock flat $dt_stock "$work/stock.log"
     for rough in 0.06 0; do
       side=ours; pl=rough; [ "$rough" = 0 ] && { side=ours-flat; pl=flat; }
-      $L "$lmp" -in in.ours $(args_of "$c") -var rough $rough -var out "$work/run" -var dt $dt_ours \
+      $L "$lmp" -in in.ours $(args_of "$c") -var rough $rough -var out "$work/run" -var dt $dt_ours ${OURS_ARGS:-} \
           -var warm "$(steps_of "$warm" $dt_ours)" -var steps "$(steps_of "$time" $dt_ours)" \
           -log "$work/ours.log" -echo none >/dev/null 2>&1 || { tail -5 "$work/ours.log"; exit 1; }
       row "$c" "$np" $side $pl $dt_ours "$work/ours.log" "$ref"
