@@ -97,7 +97,7 @@ void PairGranImpulse::settings(int narg, char **arg)
   slop = 0.0;
   order = ContactOrder::SHUFFLE;
   resting = 0.0;
-  bool tolerance_given = false;
+  bool resting_setting_given = false;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     const std::string key = arg[iarg];
     if (key == "coupled" || key == "sweeps")
@@ -133,17 +133,17 @@ void PairGranImpulse::settings(int narg, char **arg)
       solver_settings.resting_tolerance = utils::numeric(FLERR, value, false, lmp);
       if (!(solver_settings.resting_tolerance > 0.0 && solver_settings.resting_tolerance < 1.0))
         error->all(FLERR, "{}: tolerance must be in (0, 1) (found {})", STYLE, value);
-      tolerance_given = true;
+      resting_setting_given = true;
     } else if (key == "max_sweeps") {
       solver_settings.max_resting_sweeps = utils::inumeric(FLERR, value, false, lmp);
       if (solver_settings.max_resting_sweeps < 1)
         error->all(FLERR, "{}: max_sweeps must be >= 1 (found {})", STYLE, value);
-      tolerance_given = true;
+      resting_setting_given = true;
     } else {
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
   }
-  if (tolerance_given && resting == 0.0)
+  if (resting_setting_given && resting == 0.0)
     error->all(FLERR, "{}: keywords tolerance and max_sweeps set the resting solve's: they need resting yes or a "
                "speed", STYLE);
 }
