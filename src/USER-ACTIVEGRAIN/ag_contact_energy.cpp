@@ -6,9 +6,7 @@ ContactEnergy contact_energy(const ContactSolver &solver, int c, const Vec3 &vel
                              double approach, const Vec3 &wall_velocity)
 {
   const ContactSolver::Contact &contact = solver.contact(c);
-  const RigidBodyState &body1 = solver.body(contact.body1), &body2 = solver.body(contact.body2);
-  const Vec3 after = body2.velocity_at_arm(contact.r2) - body1.velocity_at_arm(contact.r1);
-  const double change = dot(contact.impulse, (velocity_before + after) * 0.5 + contact.gain);
+  const double change = dot(contact.impulse, (velocity_before + contact.velocity_after) * 0.5 + contact.gain);
   const double restituted = contact.material.e * approach;
   ContactEnergy energy;
   if (contact.min_separation > restituted)

@@ -49,13 +49,15 @@ void ContactSolver::prepare()
 {
   contacts_of_body.assign(bodies.size(), 0);
   for (Contact &c : contacts) {
-    c.K = contact_matrix(bodies[c.body1], c.r1, bodies[c.body2], c.r2);
+    c.K = contact_matrix(bodies[c.body1], c.r1, bodies[c.body2], c.r2);    // the energy ledger's too
+    if (c.solved_elsewhere) continue;
     c.impulse = c.late = Vec3();
     ++contacts_of_body[c.body1];
     ++contacts_of_body[c.body2];
   }
   auto alone = [&](int body) { return bodies[body].is_static() || contacts_of_body[body] == 1; };
   for (Contact &c : contacts) {
+    if (c.solved_elsewhere) continue;
     c.isolated = alone(c.body1) && alone(c.body2);
     if (c.isolated) continue;
     c.knn = dot(c.n, c.K * c.n);
@@ -70,7 +72,7 @@ void ContactSolver::find_islands()
 {
   coupled.clear();
   for (int i = 0; i < num_contacts(); ++i)
-    if (!contacts[i].isolated) coupled.push_back(i);
+    if (!contacts[i].isolated && !contacts[i].solved_elsewhere) coupled.push_back(i);
   num_islands = group_by_bodies(coupled, islands);
 }
 
@@ -127,6 +129,22 @@ void ContactSolver::solve_isolated()
 {
   for (Contact &c : contacts)
     if (c.isolated) solve_alone(c, c.min_separation);
+}
+
+// What the energy ledger (ag_contact_energy.h) reads of the solved bodies, kept with each contact
+// so that a contact solved elsewhere can carry it back.
+void ContactSolver::record_velocities_after()
+{
+  for (Contact &c : contacts)
+    if (!c.solved_elsewhere)
+      c.velocity_after = bodies[c.body2].velocity_at_arm(c.r2) - bodies[c.body1].velocity_at_arm(c.r1);
+}
+
+void ContactSolver::set_solution(int c, const Vec3 &impulse, const Vec3 &late, const Vec3 &velocity_after)
+{
+  contacts[c].impulse = impulse;
+  contacts[c].late = late;
+  contacts[c].velocity_after = velocity_after;
 }
 
 void ContactSolver::measure_approaches(const std::vector<int> &island)
@@ -319,6 +337,7 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
     result.shortfall = std::max(result.shortfall, shortfall);
     result.converged = result.converged && substeps >= 0;
   }
+  record_velocities_after();
   return result;
 }
 

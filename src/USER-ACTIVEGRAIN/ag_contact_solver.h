@@ -29,6 +29,7 @@
 #include "ag_solver_contact.h"
 #include "ag_solver_settings.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace ActiveGrain {
@@ -44,6 +45,15 @@ class ContactSolver {
     bool converged = true;    // every impact ended within max_substeps
     int resting_sweeps = 0;            // most sweeps an island's resting solve needed
     bool resting_converged = true;     // every resting solve converged within max_resting_sweeps
+    // This result and another solve's (of other islands), as one.
+    void merge(const Result &other)
+    {
+      substeps = std::max(substeps, other.substeps);
+      shortfall = std::max(shortfall, other.shortfall);
+      converged = converged && other.converged;
+      resting_sweeps = std::max(resting_sweeps, other.resting_sweeps);
+      resting_converged = resting_converged && other.resting_converged;
+    }
   };
 
   void clear();
@@ -69,11 +79,17 @@ class ContactSolver {
   const Vec3 &impulse(int c) const { return contacts[c].impulse; }
   // The key that orders the contact in a resting solve (ag_resting_solve.h), from its identity.
   void set_key(int c, std::uint64_t key) { contacts[c].key = key; }
+  // Contact c's island is solved by another solver, which sees all of it (an island whose
+  // contacts are found on several MPI ranks): solve() skips it, and set_solution() brings the
+  // other solver's impulse, late impulse and velocity after.
+  void solve_elsewhere(int c) { contacts[c].solved_elsewhere = true; }
+  void set_solution(int c, const Vec3 &impulse, const Vec3 &late, const Vec3 &velocity_after);
 
  private:
   // The stages of solve().
   void prepare();
   void solve_isolated();
+  void record_velocities_after();
   void find_islands();
   int group_by_bodies(const std::vector<int> &subset, std::vector<std::vector<int>> &groups);
   int solve_island(const std::vector<int> &island, const Settings &settings);    // -1: capped

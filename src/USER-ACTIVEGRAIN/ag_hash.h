@@ -59,6 +59,14 @@ class KeyIndex {
     used.push_back(slot);
     return value;
   }
+  // The value stored at key, -1 if there is none.
+  int find(std::uint64_t key) const
+  {
+    if (keys.empty()) return FREE;
+    for (std::size_t slot = mix64(key) & (keys.size() - 1); values[slot] >= 0; slot = (slot + 1) & (keys.size() - 1))
+      if (keys[slot] == key) return values[slot];
+    return FREE;
+  }
   void clear()
   {
     for (const std::size_t slot : used) values[slot] = FREE;

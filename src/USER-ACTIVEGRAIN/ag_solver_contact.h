@@ -21,11 +21,15 @@ struct SolverContact {
   Vec3 gain;
   double time = 0.0;              // when within the step it closes (0: touching at the start)
   std::uint64_t key = 0;          // from its identity, the same whatever the order (ag_resting_solve.h)
+  // Its island is solved by another solver (one that sees the island whole); the solve leaves
+  // it, and its bodies' velocities, alone, and set_solution() brings its result.
+  bool solved_elsewhere = false;
   // Filled by the solve:
   Mat3 K;
   bool isolated = false;          // the only contact of both its (movable) bodies
   Vec3 impulse;                   // on body 2 (minus on body 1)
   Vec3 late;                      // the sum of impulse times when in the step it acted
+  Vec3 velocity_after;            // relative velocity at the contact after the solve (gain apart)
   // Of a contact that shares a body (not isolated): n.K.n, and its friction's tangential step.
   double knn = 0.0;
   TangentialStep tangential;

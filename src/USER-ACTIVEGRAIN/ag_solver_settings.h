@@ -31,14 +31,23 @@ struct SolverSettings {
   double overlap_tolerance = 1.0e-2;
   int max_overlap_sweeps = 100;
   // Island contacts approaching no faster than this are resting (ag_resting_solve.h): solved
-  // together, after the impacts of the others. 0: every contact is an impact. The caller sets it
-  // from the velocity gravity and the plates give within a step.
+  // together, after the impacts of the others. 0: every contact is an impact. With
+  // resting_from_acceleration, set_step() sets it from the velocity that gravity and the plates
+  // give within a step (resting_gain times that).
   double resting_speed = 0.0;
+  bool resting_from_acceleration = false;
   // The resting solve's sweeps stop once none changes a contact's velocity by more than this
   // fraction of resting_speed, or after max_resting_sweeps. It also bounds how much slower than
   // its minimum separation velocity an overlap of a resting-solved island opens.
   double resting_tolerance = 1.0e-2;
   int max_resting_sweeps = 1000;
+
+  // The step's length and the largest acceleration of gravity or a plate in it.
+  void set_step(double dt, double largest_acceleration)
+  {
+    step = dt;
+    if (resting_from_acceleration) resting_speed = resting_gain * dt * largest_acceleration;
+  }
 };
 
 }    // namespace ActiveGrain

@@ -139,26 +139,31 @@ ContactAssembly::ContactIdentity ContactAssembly::identity_of(const AtomContact 
   return ContactIdentity(wall_index, atoms.surface, std::min(tag1, tag2), std::max(tag1, tag2));
 }
 
+// Ascending shuffle and identity; or descending identity (order reverse).
+bool ContactAssembly::precedes(const OrderKey &a, const OrderKey &b, ContactOrder order)
+{
+  if (order == ContactOrder::REVERSE) return b.identity < a.identity;
+  return std::tie(a.shuffle, a.identity) < std::tie(b.shuffle, b.identity);
+}
+
 // Sorted as keys (the contacts themselves are large to move).
 void ContactAssembly::add_found_contacts()
 {
   sort_keys.clear();
+  order_keys.clear();
   for (std::size_t k = 0; k < found.size(); k++) {
     const FoundContact &c = found[k];
-    sort_keys.push_back({order == ContactOrder::SHUFFLE ? c.shuffle : 0, c.identity, static_cast<int>(k)});
+    sort_keys.push_back({{order == ContactOrder::SHUFFLE ? c.shuffle : 0, c.identity}, static_cast<int>(k)});
   }
-  auto ascending = [](const SortKey &a, const SortKey &b) {
-    return std::tie(a.shuffle, a.identity) < std::tie(b.shuffle, b.identity);
-  };
-  auto descending = [](const SortKey &a, const SortKey &b) { return b.identity < a.identity; };
-  if (order == ContactOrder::REVERSE) std::sort(sort_keys.begin(), sort_keys.end(), descending);
-  else std::sort(sort_keys.begin(), sort_keys.end(), ascending);
+  std::sort(sort_keys.begin(), sort_keys.end(),
+            [this](const SortKey &a, const SortKey &b) { return precedes(a.key, b.key, order); });
   for (const SortKey &key : sort_keys) {
     const FoundContact &c = found[key.index];
     const int k = solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material,
                                           c.prediction.min_separation, c.prediction.gain,
                                           c.prediction.time_to_contact);
     atom_contacts.push_back(c.atoms);
+    order_keys.push_back(key.key);
     solver.set_key(k, c.shuffle);    // from the contact's identity and the step, on any rank
   }
 }
@@ -166,5 +171,6 @@ void ContactAssembly::add_found_contacts()
 double ContactAssembly::memory_usage() const
 {
   return (double) found.capacity() * sizeof(FoundContact) + (double) sort_keys.capacity() * sizeof(SortKey) +
-      (double) atom_contacts.capacity() * sizeof(AtomContact) + (double) spin_speed.capacity() * sizeof(double);
+      (double) atom_contacts.capacity() * sizeof(AtomContact) + (double) order_keys.capacity() * sizeof(OrderKey) +
+      (double) spin_speed.capacity() * sizeof(double);
 }

@@ -36,6 +36,17 @@ class ContactAssembly : protected Pointers {
     double approach;                      // normal approach speed when it closes (>= 0)
     ActiveGrain::Vec3 wall_velocity;      // a wall's velocity when the contact closes (0 for a pair)
   };
+  // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
+  using ContactIdentity = std::tuple<int, int, tagint, tagint>;
+  // Where a contact goes in the order: its shuffle (0 unless shuffled) and identity. Contacts are
+  // solved in this order, not in the order ranks find them, so that a body sees the same order
+  // on any number of ranks.
+  struct OrderKey {
+    std::uint64_t shuffle;
+    ContactIdentity identity;
+  };
+  static bool precedes(const OrderKey &a, const OrderKey &b, ContactOrder order);
+
   // What the atoms did at the step's start: largest |v| + |omega| r of owned atoms and of owned
   // and ghost atoms, largest speed of a wall, largest excess of an owned atom's radius over its
   // type's neighbor-cutoff radius, and largest overlap of a contact.
@@ -58,15 +69,13 @@ class ContactAssembly : protected Pointers {
   void assemble(class NeighList *list);
 
   const AtomContact &atoms_of(int c) const { return atom_contacts[c]; }
+  const OrderKey &order_key(int c) const { return order_keys[c]; }
+  ContactOrder contact_order() const { return order; }
   const StepExtremes &extremes() const { return step; }
   double memory_usage() const;
 
  private:
-  // Who touches whom, the same on every rank: wall index (-1 for a pair), surface, atom tags.
-  using ContactIdentity = std::tuple<int, int, tagint, tagint>;
-  // A contact found this step, before it goes to the solver. Contacts are solved in an order
-  // given by their identity (and, shuffled, the step), not by the order ranks find them, so that
-  // a body solved on one rank sees the same order on any number of ranks.
+  // A contact found this step, before it goes to the solver.
   struct FoundContact {
     std::uint64_t shuffle;
     ContactIdentity identity;
@@ -76,10 +85,8 @@ class ContactAssembly : protected Pointers {
     ActiveGrain::ContactPrediction prediction;
     AtomContact atoms;
   };
-  // Where a found contact goes in the order (shuffle 0 unless shuffled).
   struct SortKey {
-    std::uint64_t shuffle;
-    ContactIdentity identity;
+    OrderKey key;
     int index;    // in found
   };
 
@@ -108,6 +115,7 @@ class ContactAssembly : protected Pointers {
   std::vector<FoundContact> found;
   std::vector<SortKey> sort_keys;
   std::vector<AtomContact> atom_contacts;    // those of the solver's contacts, in its order
+  std::vector<OrderKey> order_keys;          // ... and their keys
   std::vector<ImpulseWall::Contact> wall_contacts;
 };
 

@@ -30,6 +30,11 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
   body_ids.assign(nall, 0);
   solved_here.assign(nall, 0);
   std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
+  // A bead is decided here if owned here; a ghost image of an owned bead too (without an atom map
+  // it counts as decided elsewhere: its island is then gathered, which is only slower).
+  const bool mapped = atom->map_style != Atom::MAP_NONE;
+  decided_here.resize(nall);
+  for (int i = 0; i < nall; i++) decided_here[i] = i < nlocal || (mapped && atom->map(tag[i]) < nlocal);
   if (!rigid_bodies) return;
 
   LowestTagRule solving;
@@ -43,6 +48,7 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
   for (int i = 0; i < nall; i++) {
     if (!body_ids[i]) continue;
     const int solver_atom = solving.deciding_atom(atom, body_ids[i]);
+    decided_here[i] = solver_atom >= 0;
     solved_here[i] = 0;
     if (solver_atom < 0) continue;
     const int owned = atom->map(tag[i]);    // map() prefers the owned copy
@@ -85,5 +91,6 @@ void ContactRanks::check_ghost_cutoff(const char *style)
 
 double ContactRanks::memory_usage() const
 {
-  return (double) body_ids.capacity() * sizeof(tagint) + (double) solved_here.capacity();
+  return (double) body_ids.capacity() * sizeof(tagint) + (double) solved_here.capacity() +
+      (double) decided_here.capacity();
 }

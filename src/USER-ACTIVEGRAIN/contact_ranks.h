@@ -25,6 +25,10 @@ class ContactRanks : protected Pointers {
   tagint body_id(int i) const { return body_ids[i]; }
   // This rank solves atom i's wall contacts (and, for a body's atom, the contacts its body decides).
   bool solves_atom(int i) const { return solved_here[i]; }
+  // Atom i's body (its bead, or its rigid body) is decided on this rank: the bead is owned here,
+  // the rigid body's lowest-tag atom is (LowestTagRule). Its contacts found on other ranks make
+  // an island that crosses ranks (IslandExchange).
+  bool decides_body_of(int i) const { return decided_here[i]; }
   const std::vector<char> &solved_atoms() const { return solved_here; }
   // This rank solves the contact of i with neighbor j (from i's side of the neighbor list), so
   // that each physical contact is solved on one rank, once: a contact with a rigid body's atom
@@ -58,6 +62,7 @@ class ContactRanks : protected Pointers {
   bool newton_pair = false;
   std::vector<tagint> body_ids;     // per owned or ghost atom: its body's ID, 0 for a bead
   std::vector<char> solved_here;    // per owned or ghost atom: solves_atom()
+  std::vector<char> decided_here;   // per owned or ghost atom: decides_body_of()
 };
 
 }    // namespace LAMMPS_NS

@@ -29,13 +29,6 @@
 using namespace LAMMPS_NS;
 
 static const char *const STYLE = "Pair gran/impulse";
-static constexpr double DEFAULT_BETA = 0.2;
-// Below this many sub-steps per half oscillation a compliant impact is too coarse to keep its
-// restitution (docs/pair_gran_impulse.rst: the error is about 3/resolution).
-static constexpr int MIN_RESOLUTION = 20;
-// Restart files: the settings' format, stored negative (the first format, without the window,
-// began with the resolution).
-static constexpr int RESTART_FORMAT = -5;
 // The units check (check_deck): in lj units, grains smaller than this are SI numbers when gravity
 // or the plates' acceleration is >= 1 or the skin is this many diameters; in si units, grains
 // this large with gravity below SI_SMALL_GRAVITY are lj numbers.
@@ -45,9 +38,9 @@ static constexpr double SI_LARGE_DIAMETER = 0.5;
 static constexpr double SI_SMALL_GRAVITY = 2.0;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), beta(DEFAULT_BETA), slop(0.0), order(ContactOrder::SHUFFLE), resting(0.0), restitution(nullptr), friction(nullptr),
+    Pair(lmp), restitution(nullptr), friction(nullptr),
     maxrad(nullptr), ghost_pairs(false), ranks(lmp), near(lmp), bodies(lmp, solver, ranks),
-    assembly(lmp, solver, bodies, ranks, near), delivery(lmp), carry(lmp), diagnostics(lmp, STYLE)
+    assembly(lmp, solver, bodies, ranks, near), exchange(lmp), delivery(lmp), carry(lmp), diagnostics(lmp, STYLE)
 {
   single_enable = 0;
   restartinfo = 1;
@@ -88,64 +81,9 @@ void PairGranImpulse::allocate()
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
 }
 
-/* pair_style gran/impulse [resolution N] [beta B] [slop S] [order shuffle|tag|reverse] [window W|step]
-   [resting yes|no|V] [tolerance T] [max_sweeps N]; every setting not given takes its default */
 void PairGranImpulse::settings(int narg, char **arg)
 {
-  solver_settings = ActiveGrain::ContactSolver::Settings();
-  beta = DEFAULT_BETA;
-  slop = 0.0;
-  order = ContactOrder::SHUFFLE;
-  resting = 0.0;
-  bool resting_setting_given = false;
-  for (int iarg = 0; iarg < narg; iarg += 2) {
-    const std::string key = arg[iarg];
-    if (key == "coupled" || key == "sweeps")
-      error->all(FLERR, "{}: keyword {} is gone: contacts that share a body are solved as one "
-                 "compliant impact, whose only setting is resolution", STYLE, key);
-    if (iarg + 2 > narg) error->all(FLERR, "{}: missing value after keyword {}", STYLE, key);
-    const std::string value = arg[iarg + 1];
-    if (key == "window") {
-      solver_settings.window =
-          value == "step" ? ActiveGrain::ContactSolver::Settings().window : utils::numeric(FLERR, value, false, lmp);
-      if (solver_settings.window < 0.0) error->all(FLERR, "{}: window must be >= 0 or step", STYLE);
-    } else if (key == "resolution") {
-      solver_settings.resolution = utils::inumeric(FLERR, value, false, lmp);
-      if (solver_settings.resolution < MIN_RESOLUTION)
-        error->all(FLERR, "{}: resolution must be >= {}", STYLE, MIN_RESOLUTION);
-    } else if (key == "beta") {
-      beta = utils::numeric(FLERR, value, false, lmp);
-      if (beta < 0.0 || beta > 1.0) error->all(FLERR, "{}: beta must be in [0, 1]", STYLE);
-    } else if (key == "slop") {
-      slop = utils::numeric(FLERR, value, false, lmp);
-      if (!(slop >= 0.0)) error->all(FLERR, "{}: slop must be >= 0 (found {})", STYLE, value);
-    } else if (key == "order") {
-      if (value == "shuffle") order = ContactOrder::SHUFFLE;
-      else if (value == "tag") order = ContactOrder::TAG;
-      else if (value == "reverse") order = ContactOrder::REVERSE;
-      else error->all(FLERR, "{}: order must be shuffle, tag or reverse (found {})", STYLE, value);
-    } else if (key == "resting") {
-      if (value == "yes" || value == "no") resting = value == "yes" ? AUTO_RESTING : 0.0;
-      else resting = utils::numeric(FLERR, value, false, lmp);
-      if (!(resting >= 0.0 || resting == AUTO_RESTING))
-        error->all(FLERR, "{}: resting must be yes, no or a speed >= 0 (found {})", STYLE, value);
-    } else if (key == "tolerance") {
-      solver_settings.resting_tolerance = utils::numeric(FLERR, value, false, lmp);
-      if (!(solver_settings.resting_tolerance > 0.0 && solver_settings.resting_tolerance < 1.0))
-        error->all(FLERR, "{}: tolerance must be in (0, 1) (found {})", STYLE, value);
-      resting_setting_given = true;
-    } else if (key == "max_sweeps") {
-      solver_settings.max_resting_sweeps = utils::inumeric(FLERR, value, false, lmp);
-      if (solver_settings.max_resting_sweeps < 1)
-        error->all(FLERR, "{}: max_sweeps must be >= 1 (found {})", STYLE, value);
-      resting_setting_given = true;
-    } else {
-      error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
-    }
-  }
-  if (resting_setting_given && resting == 0.0)
-    error->all(FLERR, "{}: keywords tolerance and max_sweeps set the resting solve's: they need resting yes or a "
-               "speed", STYLE);
+  style_settings.parse(lmp, STYLE, narg, arg);
 }
 
 /* pair_coeff I J e mu */
@@ -183,7 +121,7 @@ void PairGranImpulse::init_style()
   request_neighbors();
   find_type_radii();
   check_deck();
-  assembly.init(beta, slop, order, restitution, friction, walls);
+  assembly.init(style_settings.beta, style_settings.slop, style_settings.order, restitution, friction, walls);
 }
 
 // What this style cannot do, refused before a run: other integrators than velocity Verlet, and
@@ -388,14 +326,15 @@ void PairGranImpulse::assemble()
   solver.clear();
   bodies.begin_step();
   assembly.assemble(list);
+  exchange.split(solver, bodies, assembly);
 }
 
 void PairGranImpulse::solve()
 {
-  solver_settings.step = update->dt;
-  solver_settings.resting_speed =
-      resting == AUTO_RESTING ? solver_settings.resting_gain * update->dt * largest_acceleration() : resting;
-  const ActiveGrain::ContactSolver::Result result = solver.solve(solver_settings);
+  ActiveGrain::SolverSettings &solver_settings = style_settings.solver;
+  solver_settings.set_step(update->dt, largest_acceleration());
+  ActiveGrain::ContactSolver::Result result = solver.solve(solver_settings);
+  result.merge(exchange.solve(solver, solver_settings, style_settings.order));
   report(diagnostics.record(result, assembly.extremes(), largest_type_radius(), solver_settings.max_substeps),
          diagnostics.tally_energy(solver, assembly));
 }
@@ -484,54 +423,14 @@ void PairGranImpulse::read_restart(FILE *fp)
     }
 }
 
-// Settings in restart files: a negative format number first (files of the first format begin with
-// the resolution, which is positive), then resolution, beta, order, the window, resting, the
-// resting solve's tolerance, the slop and the resting solve's sweep cap.
 void PairGranImpulse::write_restart_settings(FILE *fp)
 {
-  const int order_code = static_cast<int>(order);
-  fwrite(&RESTART_FORMAT, sizeof(int), 1, fp);
-  fwrite(&solver_settings.resolution, sizeof(int), 1, fp);
-  fwrite(&beta, sizeof(double), 1, fp);
-  fwrite(&order_code, sizeof(int), 1, fp);
-  fwrite(&solver_settings.window, sizeof(double), 1, fp);
-  fwrite(&resting, sizeof(double), 1, fp);
-  fwrite(&solver_settings.resting_tolerance, sizeof(double), 1, fp);
-  fwrite(&slop, sizeof(double), 1, fp);
-  fwrite(&solver_settings.max_resting_sweeps, sizeof(int), 1, fp);
+  style_settings.write_restart(fp);
 }
 
 void PairGranImpulse::read_restart_settings(FILE *fp)
 {
-  int order_code = 0;
-  resting = 0.0;
-  slop = 0.0;
-  solver_settings = ActiveGrain::ContactSolver::Settings();
-  if (comm->me == 0) {
-    int format = 0;
-    utils::sfread(FLERR, &format, sizeof(int), 1, fp, nullptr, error);
-    if (format > 0) solver_settings.resolution = format;    // the first format: no window
-    else utils::sfread(FLERR, &solver_settings.resolution, sizeof(int), 1, fp, nullptr, error);
-    if (format < RESTART_FORMAT) error->one(FLERR, "{}: restart file of a newer format ({})", STYLE, -format);
-    utils::sfread(FLERR, &beta, sizeof(double), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &order_code, sizeof(int), 1, fp, nullptr, error);
-    if (format < 0) utils::sfread(FLERR, &solver_settings.window, sizeof(double), 1, fp, nullptr, error);
-    if (format < -2) utils::sfread(FLERR, &resting, sizeof(double), 1, fp, nullptr, error);
-    if (format < -3) utils::sfread(FLERR, &solver_settings.resting_tolerance, sizeof(double), 1, fp, nullptr, error);
-    if (format < -4) {
-      utils::sfread(FLERR, &slop, sizeof(double), 1, fp, nullptr, error);
-      utils::sfread(FLERR, &solver_settings.max_resting_sweeps, sizeof(int), 1, fp, nullptr, error);
-    }
-  }
-  MPI_Bcast(&solver_settings.resolution, 1, MPI_INT, 0, world);
-  MPI_Bcast(&beta, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&slop, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&order_code, 1, MPI_INT, 0, world);
-  MPI_Bcast(&solver_settings.window, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&solver_settings.resting_tolerance, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&solver_settings.max_resting_sweeps, 1, MPI_INT, 0, world);
-  order = static_cast<ContactOrder>(order_code);
+  style_settings.read_restart(lmp, STYLE, fp);
 }
 
 void *PairGranImpulse::extract(const char *name, int &dim)
@@ -546,5 +445,5 @@ void *PairGranImpulse::extract(const char *name, int &dim)
 double PairGranImpulse::memory_usage()
 {
   return delivery.memory_usage() + bodies.memory_usage() + assembly.memory_usage() + ranks.memory_usage() +
-      near.memory_usage() + (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
+      near.memory_usage() + exchange.memory_usage() + (double) solver.num_contacts() * sizeof(ActiveGrain::ContactSolver::Contact);
 }

@@ -13,8 +13,10 @@ PairStyle(gran/impulse,PairGranImpulse);
 #include "ag_contact_solver.h"
 #include "contact_assembly.h"
 #include "contact_ranks.h"
+#include "gran_impulse_settings.h"
 #include "impulse_carry.h"
 #include "impulse_delivery.h"
+#include "island_exchange.h"
 #include "near_pairs.h"
 #include "pair.h"
 #include "solve_diagnostics.h"
@@ -84,16 +86,7 @@ class PairGranImpulse : public Pair {
   double largest_acceleration() const;
   double largest_wall_acceleration() const;
 
-  // settings
-  ActiveGrain::ContactSolver::Settings solver_settings;
-  double beta;    // overlaps leave at >= beta * (overlap - slop) / dt
-  double slop;
-  ContactOrder order;
-  // Resting contacts solved together (ag_resting_solve.h) below this speed; AUTO_RESTING: from
-  // gravity and the walls' vibration; 0: none.
-  double resting;
-  static constexpr double AUTO_RESTING = -1.0;
-
+  GranImpulseSettings style_settings;    // the keywords of pair_style
   double **restitution, **friction;
   double *maxrad;    // largest radius per type, present or to be inserted (neighbor cutoff)
 
@@ -106,6 +99,7 @@ class PairGranImpulse : public Pair {
   NearPairs near;                  // the pairs of the neighbor list that may touch soon
   SolverBodies bodies;             // the solver's bodies of this step's atoms
   ContactAssembly assembly;        // this step's contacts, in their order
+  IslandExchange exchange;         // islands that cross ranks, solved whole
   ImpulseDelivery delivery;        // impulses to atoms: forces, late moves, virial
   ImpulseCarry carry;              // the half impulses still due across runs
   SolveDiagnostics diagnostics;    // outputs, errors and warnings of the solves

@@ -25,6 +25,8 @@ void SolverBodies::init(const std::vector<RigidBodyProvider *> &body_providers, 
 void SolverBodies::begin_step()
 {
   body_index.clear();
+  keys.clear();
+  elsewhere.clear();
   atom_body.assign(atom->nlocal + atom->nghost, -1);
   gravity_now.clear();
   for (Fix *gravity : gravities) {
@@ -57,7 +59,12 @@ int SolverBodies::body_of_atom(int i)
                                      Vec3(atom->v[i]), Vec3(atom->omega[i]));
       if (atom->radius[i] == 0.0) state.inv_inertia = Mat3();    // a point mass takes no torque
     }
-    return solver.add_body(state);
+    const int body = solver.add_body(state);
+    keys.resize(body + 1, 0);
+    elsewhere.resize(body + 1, 0);
+    keys[body] = static_cast<std::uint64_t>(key);
+    elsewhere[body] = !ranks.decides_body_of(i);
+    return body;
   });
   return atom_body[i];
 }
@@ -105,4 +112,8 @@ bool SolverBodies::add_late_impulse(int i, const Vec3 &late, const Vec3 &late_an
   return false;
 }
 
-double SolverBodies::memory_usage() const { return (double) atom_body.capacity() * sizeof(int); }
+double SolverBodies::memory_usage() const
+{
+  return (double) atom_body.capacity() * sizeof(int) + (double) keys.capacity() * sizeof(std::uint64_t) +
+      (double) elsewhere.capacity();
+}

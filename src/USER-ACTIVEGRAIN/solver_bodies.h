@@ -30,6 +30,10 @@ class SolverBodies : protected Pointers {
   void begin_step();
 
   int body_of_atom(int i);
+  // A solver body's key, the same on every rank (2 tag for a bead, 2 ID + 1 for a rigid body),
+  // 0 for a wall's; and whether another rank decides it (ContactRanks::decides_body_of).
+  std::uint64_t key_of(int body) const { return body < (int) keys.size() ? keys[body] : 0; }
+  bool decided_elsewhere(int body) const { return body < (int) keys.size() && elsewhere[body]; }
   // Lever arm from body's centre of mass to point, from atom i's own image of the body.
   ActiveGrain::Vec3 lever_arm(int i, int body, const ActiveGrain::Vec3 &point) const;
   // Atom i's velocity at a point of its surface, from the atom's own velocity and spin.
@@ -52,6 +56,8 @@ class SolverBodies : protected Pointers {
   std::vector<std::pair<int, ActiveGrain::Vec3>> gravity_now;    // group bit, acceleration
   ActiveGrain::KeyIndex body_index;    // 2*tag (bead) or 2*body_id+1 (rigid body)
   std::vector<int> atom_body;          // solver body of each atom, -1 before lookup
+  std::vector<std::uint64_t> keys;     // per solver body (0 for walls' bodies)
+  std::vector<char> elsewhere;         // per solver body: decided_elsewhere()
 };
 
 }    // namespace LAMMPS_NS

@@ -117,7 +117,7 @@ TEST_F(StaticPressure, RowPressedAgainstASideWall)
 class RodPackingStress : public LammpsTest {};
 
 // A dense packing of rods (fix rigid/rod) and beads between still plates, without gravity,
-// started with random velocities (as test_mpi_energy.cpp): in a step with contacts after 100
+// started with random velocities (as test_mpi8_energy.cpp): in a step with contacts after 100
 // steps, the negative sum of compute stress/atom (pair) equals the pair style's global virial in
 // all six components. On several ranks a rod's contacts are solved on its solver rank, from ghost
 // atoms too: each contact's virial must be tallied once and reach the atoms that own it.

@@ -1,5 +1,5 @@
-// Energy input and dissipation (compute pair gran/impulse, the wall fixes' ENERGY block) on 1, 2
-// and 4 ranks (test_mpi_*): a bead dropped on a still plate loses (1 - e^2) of its impact energy,
+// Energy input and dissipation (compute pair gran/impulse, the wall fixes' ENERGY block) on 1, 2,
+// 4 and 8 ranks (test_mpi8_*): a bead dropped on a still plate loses (1 - e^2) of its impact energy,
 // and in a vibrated bead bed the plates' work plus the overlap correction's equals the energy
 // dissipated plus the change of kinetic and potential energy over a window.
 #include "beads_deck.h"
