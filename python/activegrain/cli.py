@@ -4,7 +4,7 @@ Every dump command takes the cell geometry (``--geometry``; auto reads the box f
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
 ``--length-unit`` (1e-3 to work in bead diameters d from the example decks' dumps, in metres)
 and ``--timestep`` (the deck's time step in seconds, 1e-4 in the example decks; without it,
-times are MD steps). Each command's ``--help`` gives its options, their defaults and examples.
+times are MD steps; ``phase``, whose rates are per second, needs it). Each command's ``--help`` gives its options, their defaults and examples.
 
 A bad argument or input prints one line, ``ERROR: activegrain COMMAND: ...`` (exit status 2 for
 a command line that does not parse, else 1); a dump that ends within a frame (a killed
@@ -162,18 +162,40 @@ def cmd_polar(args, out):
     _print_table(io.run_frames(frames, single_frame), out)
 
 
-def cmd_phase(args, out):
-    if args.lag < 0:
-        raise ValueError(f"--lag {args.lag}: frames back, 0 or more")
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
+_LAG_GONE = ("--lag is gone: the phase is measured over a window of time, not a number of frames back "
+             "(--window SECONDS, default {:g} s)")
 
-    def single_frame(k, fr, previous):
-        res = analysis.classify_phase(fr, geom, previous=previous)
-        row = {"step": fr.step, "phase": res.phase.value}
+
+def cmd_phase(args, out):
+    if args.lag is not None:
+        raise ValueError(_LAG_GONE.format(analysis.WINDOW))
+    if args.timestep is None:
+        raise ValueError("--timestep is needed: the phase is decided on rates and time averages in seconds "
+                         "(the rods' speed, the beads' mobility, over --window seconds); give the deck's "
+                         "time step (1e-4 in the example decks)")
+    if not args.window > 0:
+        raise ValueError(f"--window {args.window}: seconds, above 0")
+    if args.every is not None and args.every < 1:
+        raise ValueError(f"--every {args.every}: 1 or more")
+    # every frame of the dump, for the windows; --frame and --every choose the frames classified
+    frames = list(io.read_dump(args.dump, length_unit=args.length_unit, timestep=args.timestep))
+    if args.frame is not None:
+        if not -len(frames) <= args.frame < len(frames):
+            raise ValueError(f"{args.dump}: no frame {args.frame} (the dump has {len(frames)})")
+        which = [args.frame % len(frames)]
+    else:
+        which = range(0, len(frames), args.every or 1)
+    geom = _geometry(args, frames[0])
+    try:
+        results = analysis.classify_frames(frames, geom, args.window, which=which)
+    except ValueError as e:
+        raise ValueError(f"{args.dump}: {e}") from None
+    rows = []
+    for k, res in zip(which, results):
+        row = {"step": frames[k].step, "time": frames[k].time, "phase": res.phase.value}
         row.update({name: v for name, v in res.observables.items() if name != "layer_coord"})
-        return row
-    _print_table(io.run_frames(frames, single_frame, lag=args.lag), out)
+        rows.append(row)
+    _print_table(rows, out)
 
 
 def cmd_condensate(args, out):
@@ -304,11 +326,13 @@ def cmd_continuum(args, out):
 
 def cmd_sweep(args, out):
     from . import sweep
+    if args.lag is not None:
+        raise ValueError(_LAG_GONE.format(analysis.WINDOW))
     cfg = sweep.SweepConfig(
         deck=pathlib.Path(args.deck).resolve(), phi_b=args.phi_b, phi_r=args.phi_r, seeds=args.seeds,
         time=args.time, out=pathlib.Path(args.out).resolve(), ranks=args.ranks,
         variables=[tuple(v) for v in args.var or []], lmp=args.lmp, mpirun=args.mpirun, dump=args.dump,
-        frames=args.frames, lag=args.lag, geometry=args.geometry, r_in=args.r_in, r_out=args.r_out,
+        frames=args.frames, window=args.window, timestep=args.timestep, geometry=args.geometry, r_in=args.r_in, r_out=args.r_out,
         length_unit=args.length_unit, timeout=args.timeout)
     results, ran = sweep.run_sweep(cfg)
     out.write(f"{ran} run(s) made, {len(results) - ran} already done; "
@@ -414,15 +438,30 @@ def build_parser():
                   "polar minimal.dump --length-unit 1e-3 --timestep 1e-4 --frame -1"])
     p.set_defaults(func=cmd_polar)
 
-    p = _command(sub, "phase", "classify each frame: isotropic, flock, segregated, condensed or jammed",
-                 "Classify each frame from measured observables (activegrain.analysis.classify_phase): "
-                 "jammed (dense and arrested), condensed (a polar rod layer with denser beads ahead "
-                 "holds most rods), segregated, flock (polar and advancing) or isotropic; a table with "
-                 "the phase and its observables, one row per frame.",
+    p = _command(sub, "phase", "classify each frame: isotropic, flock, arrested, segregated, condensed or jammed",
+                 "The phase of the run at each frame (activegrain.analysis.classify_frames), from the "
+                 "frame's structure and from rates and time averages over the --window seconds of the "
+                 "run up to it, so that it does not depend on how often the run was dumped: jammed "
+                 "(dense, beads arrested), condensed (a polar rod layer with denser beads ahead holds "
+                 "most rods), segregated, flock (aligned and advancing), arrested (aligned, held still) "
+                 "or isotropic; a table with the phase and its observables, one row per frame. Needs "
+                 "--timestep. The windows use every frame of the dump; --every and --frame only choose "
+                 "the frames classified.",
                  [f"phase out/channel.dump {ex} --every 10 > phase.txt",
-                  f"phase run/box.dump {ex} --geometry box --every 2 --lag 1"])
-    p.add_argument("--lag", type=int, default=1,
-                   help="bead mobility (jammed) and rod drift (flock) against the frame this many frames earlier (0: none)")
+                  f"phase run/box.dump {ex} --geometry box --window 2 --frame -1"])
+    p.add_argument("--window", type=float, default=analysis.WINDOW,
+                   help="seconds of the run up to a frame over which the rods' speed, the beads' mobility "
+                        "and the mean polar order are taken (the first seconds of the run for a frame "
+                        "less than this after its start)")
+    p.add_argument("--lag", type=int, default=None, help=argparse.SUPPRESS)
+    helps = {"--timestep": "the deck's time step in seconds (1e-4 in the example decks); needed: the rates "
+                           "are per second",
+             "--frame": "classify only this frame (Python index, -1 = the last), with its window from the "
+                        "frames before it (default: all frames)",
+             "--every": "classify every n-th frame, each with its window from all frames (default: every frame)"}
+    for action in p._actions:
+        if action.option_strings and action.option_strings[0] in helps:
+            action.help = helps[action.option_strings[0]]
     p.set_defaults(func=cmd_phase)
 
     p = _command(sub, "condensate", "annulus: the dense arc, its drift round the ring, the rods pressing on its ends",
@@ -581,7 +620,11 @@ def build_parser():
     p.add_argument("--timeout", type=float, help="seconds allowed per run (default: no limit)")
     p.add_argument("--dump", help="dump file a run writes (default: the only *.dump in its folder)")
     p.add_argument("--frames", type=int, default=5, help="classify this many last frames (majority)")
-    p.add_argument("--lag", type=int, default=1, help="bead mobility (jammed) and rod drift (flock) against the frame this many earlier")
+    p.add_argument("--window", type=float, default=analysis.WINDOW,
+                   help="seconds of the run up to a frame over which its rates and averages are taken")
+    p.add_argument("--timestep", type=float, default=1e-4,
+                   help="the deck's time step, s (the example decks'): frame times in seconds")
+    p.add_argument("--lag", type=int, default=None, help=argparse.SUPPRESS)
     p.add_argument("--geometry", default="auto", choices=["auto", "box", "channel", "rectangle", "annulus"],
                    help="cell geometry (auto: from the box's boundary flags)")
     p.add_argument("--r-in", type=float, default=0.0, help="annulus inner radius (dump units)")
@@ -610,13 +653,16 @@ def main(argv=None, out=None):
     show = warnings.showwarning
 
     def one_line(message, category, *rest, **kw):
-        if issubclass(category, io.TruncatedDumpWarning):
+        if issubclass(category, (io.TruncatedDumpWarning, analysis.ShortRunWarning,
+                                     analysis.SingleFrameWarning)):
             sys.stderr.write(f"WARNING: {name}: {message}\n")
         else:
             show(message, category, *rest, **kw)
     with warnings.catch_warnings():
         warnings.showwarning = one_line
         warnings.simplefilter("always", io.TruncatedDumpWarning)     # each dump's, every call
+        warnings.simplefilter("always", analysis.ShortRunWarning)
+        warnings.simplefilter("always", analysis.SingleFrameWarning)
         try:
             args.func(args, out or sys.stdout)
         except ModuleNotFoundError as e:

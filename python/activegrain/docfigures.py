@@ -130,7 +130,9 @@ def main(outdir):
     fig, axs = plt.subplots(5, 1, figsize=(8, 11.8))
     for ax, phase in zip(axs, ("isotropic", "flock", "segregated", "condensed", "trapped")):
         pf = S.phase_configuration(phase, seed=3)
-        res = A.classify_phase(pf, geometry_from_box(pf.box))
+        # the last frame of a second in which the rods advanced along their axes at 2 d/s
+        window = S.trajectory(pf, [-1.0, 0.0], rod_speed=2.0, bead_speed=0.3)
+        res = A.classify_phase(window[-1], geometry_from_box(pf.box), window=window)
         plotting.draw_snapshot(ax, pf, geometry_from_box(pf.box))
         o = res.observables
         ax.set_title(f"built as {phase}: classified {res.phase}  (P={o['P']:.2f}, "

@@ -15,7 +15,9 @@ from .geometry import Annulus
 # Marker, face and edge colour per phase, in the legend's order (open for the disordered ones).
 PHASE_MARKERS = {Phase.ISOTROPIC: ("o", "none", "tab:gray"), Phase.FLOCK: ("^", "tab:blue", "tab:blue"),
                  Phase.SEGREGATED: ("s", "tab:orange", "tab:orange"), Phase.CONDENSED: ("*", "tab:red", "tab:red"),
-                 Phase.JAMMED: ("X", "black", "black")}
+                 Phase.JAMMED: ("X", "black", "black"), Phase.ARRESTED: ("v", "tab:purple", "tab:purple"),
+                 Phase.ALIGNED: ("^", "none", "tab:blue")}
+_RARE_PHASES = (Phase.ARRESTED, Phase.ALIGNED)   # in a phase diagram's key only where they occur
 
 
 def _periodic_copies(poly, box):
@@ -309,6 +311,8 @@ def phase_diagram(points, path, title=None):
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
     for phase, (marker, face, edge) in PHASE_MARKERS.items():
         xy = [k for k, v in points.items() if v[0] == phase]
+        if phase in _RARE_PHASES and not xy:
+            continue
         ax.scatter([p[0] for p in xy], [p[1] for p in xy], marker=marker, s=90, facecolors=face,
                    edgecolors=edge, linewidths=1.5, label=phase.value)
     for (b, r), (_, k, n) in points.items():

@@ -6,9 +6,9 @@ with ``-var phi_b``, ``-var phi_r``, ``-var seed``, ``-var time`` and ``-var out
 fixed ``--var NAME VALUE`` added, under ``mpirun -np RANKS`` (or directly for one rank). Each run
 lives in its own folder ``DIR/phi_b<..>_phi_r<..>_seed<..>``; ``result.json`` there marks it done
 and holds the area fractions the deck reached, the phase that
-:func:`activegrain.analysis.classify_phase` gives the last frames of its dump (the majority
-over them, each frame against the one ``lag`` frames earlier for the mobility that decides
-"jammed") with the observables, and its wall time. A second call skips the runs that are done
+:func:`activegrain.analysis.classify_frames` gives the last frames of its dump (the majority
+over them, each with its rates and averages over the ``window`` seconds of the run up to it)
+with the observables, and its wall time. A second call skips the runs that are done
 (an unfinished run's folder is started afresh), so an interrupted sweep resumes.
 
 A point is done only when its run has ended cleanly and its result is written: ``run.json``
@@ -40,6 +40,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from collections import Counter
 from dataclasses import dataclass, field
 
@@ -54,8 +55,8 @@ LOCK = ".sweep.lock"       # held by the sweep running in a folder
 RUN_KEYS = ("phi_b", "phi_r", "seed", "phi_b_reached", "phi_r_reached", "wall_s", "command")
 RESULT_KEYS = RUN_KEYS + ("phase", "phase_counts", "frames", "observables")
 REACHED = re.compile(r"ActiveGrain \w+: phi_b = ([\d.]+) \(asked [^)]*\), phi_r = ([\d.]+) \(asked")
-TABLE_KEYS = ("phi_b", "phi_r", "seed", "phase", "phi_b_reached", "phi_r_reached", "phi_total", "P",
-              "segregation", "active_layer_fraction", "layer_contrast", "mobility", "frames", "wall_s")
+TABLE_KEYS = ("phi_b", "phi_r", "seed", "phase", "phi_b_reached", "phi_r_reached", "phi_total", "P", "P_mean",
+              "rod_speed", "segregation", "active_layer_fraction", "layer_contrast", "mobility", "frames", "wall_s")
 
 
 @dataclass
@@ -72,7 +73,8 @@ class SweepConfig:
     mpirun: str = "mpirun"
     dump: str = None          # dump file name in a run's folder (default: its only *.dump)
     frames: int = 5           # last frames classified
-    lag: int = 1              # frames between a frame and the one its mobility is measured from
+    window: float = 1.0       # seconds of the run up to a frame over which its rates are taken
+    timestep: float = 1e-4    # the deck's time step, s (the example decks'): frame times in seconds
     geometry: str = "auto"
     r_in: float = 0.0
     r_out: float = None
@@ -96,8 +98,10 @@ class SweepConfig:
             raise ValueError(f"--time {self.time}: the run length must be positive")
         if self.ranks < 1:
             raise ValueError(f"--ranks {self.ranks}: at least 1")
-        if self.frames < 1 or self.lag < 0:
-            raise ValueError(f"--frames {self.frames} --lag {self.lag}: frames >= 1, lag >= 0")
+        if self.frames < 1:
+            raise ValueError(f"--frames {self.frames}: at least 1")
+        if not self.window > 0 or not self.timestep > 0:
+            raise ValueError(f"--window {self.window} --timestep {self.timestep}: seconds, above 0")
         taken = {"phi_b", "phi_r", "seed", "time", "out"}
         for name, _ in self.variables:
             if name in taken:
@@ -140,16 +144,23 @@ def _dump_of(cfg, folder):
 
 
 def classify_run(cfg, dump):
-    """Majority phase of the last ``cfg.frames`` frames and their mean observables."""
-    frames = list(io.read_dump(dump, length_unit=cfg.length_unit))
-    if len(frames) < 1 + cfg.lag:
-        raise RuntimeError(f"{dump}: {len(frames)} frames, fewer than lag + 1 = {cfg.lag + 1}")
-    first = max(cfg.lag, len(frames) - cfg.frames)
+    """Majority phase of the last ``cfg.frames`` frames (each with its window of ``cfg.window``
+    seconds) and their mean observables."""
+    frames = list(io.read_dump(dump, length_unit=cfg.length_unit, timestep=cfg.timestep))
+    if len(frames) < 2:
+        raise RuntimeError(f"{dump}: {len(frames)} frame, the phase needs frames over a window of time")
+    first = max(0, len(frames) - cfg.frames)
     u = cfg.length_unit
     geom = geometry_from_box(frames[0].box, cfg.geometry, None, cfg.r_in / u,
                              None if cfg.r_out is None else cfg.r_out / u)
-    results = io.run_frames(frames, lambda k, frame, previous: analysis.classify_phase(frame, geom, previous=previous),
-                            lag=cfg.lag, start=first)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", analysis.ShortRunWarning)
+        try:
+            results = analysis.classify_frames(frames, geom, cfg.window, which=range(first, len(frames)))
+        except ValueError as e:
+            raise RuntimeError(f"{dump}: {e}") from None
+    for w in caught:        # with the run's name
+        warnings.warn(f"{dump}: {w.message}", w.category, stacklevel=2)
     counts = Counter(r.phase.value for r in results)
     phase = analysis.majority_phase(counts)
     numeric = {k for k, v in results[0].observables.items() if isinstance(v, (int, float))}

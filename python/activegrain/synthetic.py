@@ -195,6 +195,33 @@ def displaced(frame, rms, seed=0, dt=1.0):
     return replace(frame, pos=pos, step=frame.step + 1, time=frame.time + dt)
 
 
+def trajectory(frame, times, rod_speed=0.0, bead_speed=0.0, rattle=0.0, period=0.3, seed=0, timestep=1e-4):
+    """The frames at ``times`` (seconds) of a run that passes through ``frame`` at time 0: its
+    rods move along their own axes (kept) at ``rod_speed``, each bead at ``bead_speed`` in a
+    direction of its own (lengths per second), and every rod and bead rattles about that by
+    ``rattle`` (round a circle of that radius in ``period`` s, each from a phase of its own).
+    Positions are functions of time, so that frames at any ``times`` are samples of one run
+    (their steps: time / ``timestep``)."""
+    rng = np.random.default_rng(seed)
+    rods = frame.rods()
+    beads = frame.is_bead
+    of_rod = np.searchsorted(rods.ids, frame.rod_of_atom[~beads])     # each rod atom's rod
+    angle = rng.uniform(0, 2 * np.pi, beads.sum())
+    heading = np.column_stack([np.cos(angle), np.sin(angle)])
+    bead_phase, rod_phase = rng.uniform(0, 2 * np.pi, beads.sum()), rng.uniform(0, 2 * np.pi, len(rods))
+    circle = lambda t, ph: rattle * np.column_stack([np.cos(2 * np.pi * t / period + ph) - np.cos(ph),
+                                                     np.sin(2 * np.pi * t / period + ph) - np.sin(ph)])
+    out = []
+    for t in np.atleast_1d(np.asarray(times, float)):
+        d = np.zeros((len(frame.ids), 2))
+        d[beads] = bead_speed * t * heading + circle(t, bead_phase)
+        d[~beads] = (rod_speed * t * rods.axis + circle(t, rod_phase))[of_rod]
+        pos = frame.pos.copy()
+        pos[:, :2] = frame.box.wrap(pos[:, :2] + d)
+        out.append(replace(frame, pos=pos, step=int(round(t / timestep)), time=float(t)))
+    return out
+
+
 def relaxed_beads(rng, box, phi_of_x, obstacles=(), obstacle_r=(), r=0.5, sweeps=2000, tol=1e-3):
     """Beads drawn with local area fraction ``phi_of_x`` (inverse-CDF sampling along x),
     then pushed apart (at most ``sweeps`` sweeps) until no two overlap by more than

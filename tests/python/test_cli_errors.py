@@ -42,25 +42,26 @@ def dumps(tmp_path_factory, short_run_frames):
 
 
 def test_a_dump_cut_within_a_frame_gives_its_whole_frames_and_one_warning_line(dumps):
-    done = activegrain("phase", dumps / "killed.dump", "--length-unit", "1e-3")
+    done = activegrain("phase", dumps / "killed.dump", "--length-unit", "1e-3", "--timestep", "1e-4",
+                       "--window", "0.1")
     assert done.returncode == 0, done.stderr
     line = one_line(done, "WARNING: activegrain phase: ")
     assert str(dumps / "killed.dump") in line and "its 2 whole frame(s), to step 1000" in line
     rows = done.stdout.splitlines()[1:]
     assert [r.split()[0] for r in rows] == ["0", "1000"]
-    whole = activegrain("phase", dumps / "run.dump", "--length-unit", "1e-3")
+    whole = activegrain("phase", dumps / "run.dump", "--length-unit", "1e-3", "--timestep", "1e-4", "--window", "0.1")
     assert whole.returncode == 0 and whole.stderr == "" and whole.stdout.splitlines()[1:3] == rows
 
 
 @pytest.mark.parametrize("argv, status, message", [
     (["profile", "{dir}/none.dump"], 1,
      "ERROR: activegrain profile: {dir}/none.dump: No such file or directory"),
-    (["phase", "{dir}"], 1, "ERROR: activegrain phase: {dir}: Is a directory"),
+    (["phase", "{dir}", "--timestep", "1e-4"], 1, "ERROR: activegrain phase: {dir}: Is a directory"),
     (["profile", "{dir}/run.dump", "--geometry", "hexagon"], 2,
      "ERROR: activegrain profile: argument --geometry: invalid choice: 'hexagon'"),
     (["polar", "{dir}/run.dump", "--geometry", "annulus"], 1,
      "ERROR: activegrain polar: --geometry annulus needs --r-out"),
-    (["phase", "{dir}/nocols.dump"], 1,
+    (["phase", "{dir}/nocols.dump", "--timestep", "1e-4"], 1,
      "ERROR: activegrain phase: {dir}/nocols.dump: dump lacks column(s) mol, radius"),
     (["profile", "{dir}/run.dump", "--bins", "many"], 2,
      "ERROR: activegrain profile: argument --bins: invalid int value: 'many'"),

@@ -44,10 +44,14 @@ def test_profile_command(condensed_dump, tmp_path):
 
 
 def test_phase_and_polar_commands(condensed_dump):
-    rc, text = run(["phase", condensed_dump, "--length-unit", "1e-3"])
+    rc, text = run(["phase", condensed_dump, "--length-unit", "1e-3", "--timestep", "1e-4", "--window", "0.2"])
     assert rc == 0
     lines = text.splitlines()
-    assert len(lines) == 4 and all(l.split()[1] == "condensed" for l in lines[1:])
+    head = lines[0].split()
+    assert head[:3] == ["step", "time", "phase"] and len(lines) == 4
+    assert all(l.split()[2] == "condensed" for l in lines[1:])
+    # the layer moves 2 d per 0.1 s: 20 d/s, 4.4 rod lengths per second
+    assert all(float(dict(zip(head, l.split()))["rod_speed"]) == pytest.approx(20 / 4.5, rel=0.01) for l in lines[1:])
     rc, text = run(["polar", condensed_dump, "--length-unit", "1e-3", "--frame", "-1"])
     head, row = text.splitlines()
     vals = dict(zip(head.split(), row.split()))
@@ -181,7 +185,7 @@ def test_annulus_geometry_on_the_command_line(tmp_path):
     areas = 0.5 * (2 * np.pi / 8) * (28.0 ** 2 - 15.0 ** 2)
     assert np.sum(rows[:, 1]) * areas == pytest.approx(400 * np.pi * 0.25, rel=1e-5)  # 6 printed digits
     assert np.all(rows[rows[:, 0] > 3.0, 1] == 0)  # no beads past theta = 2.5 + a bead
-    rc, text = run(["phase", str(dump)] + geo)
+    rc, text = run(["phase", str(dump), "--timestep", "1e-4"] + geo)     # one frame: its structure
     head, row = text.splitlines()
     vals = dict(zip(head.split(), row.split()))
     assert float(vals["P_tangential"]) == pytest.approx(1.0, abs=1e-3)

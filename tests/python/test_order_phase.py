@@ -102,11 +102,20 @@ def test_layer_sides_in_a_period_shorter_than_both_windows():
     assert layer.phi_behind == pytest.approx(phi, rel=0.05)
 
 
+def _classify_moving(fr, thresholds=None, geometry=None):
+    """``fr`` classified as the last frame of a run whose rods advanced along their axes at 2 d/s
+    (0.44 rod lengths per second) and whose beads moved at 0.3 d/s over the second before it."""
+    window = S.trajectory(fr, [-1.0, 0.0], rod_speed=2.0, bead_speed=0.3)
+    return A.classify_phase(window[-1], geometry or geometry_from_box(fr.box), thresholds, window=window)
+
+
 @pytest.mark.parametrize("seed", [0, 1, 2])
 @pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed"])
 def test_classifier_recognises_constructed_phases(phase, seed):
     fr = S.phase_configuration(phase, seed=seed)
-    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == phase
+    assert _classify_moving(fr).phase == phase
+    # one frame shows the structure; aligned rods might be a flock or held still
+    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == ("aligned" if phase == "flock" else phase)
 
 
 @pytest.mark.parametrize("phase", ["isotropic", "flock", "segregated", "condensed", "trapped"])
@@ -116,7 +125,7 @@ def test_classifier_on_disordered_packings(phase):
     tree = cKDTree(xy - fr.box.lo[:2], boxsize=[fr.box.lengths[0], 1e3])  # periodic along x
     assert len(tree.query_pairs(0.99)) == 0  # a real packing: no overlapping beads
     expect = "condensed" if phase == "trapped" else phase
-    assert A.classify_phase(fr, geometry_from_box(fr.box)).phase == expect
+    assert _classify_moving(fr).phase == expect
 
 
 def test_two_opposed_layers_trap_a_condensate():
@@ -141,10 +150,11 @@ def test_two_opposed_layers_trap_a_condensate():
 
 def test_classifier_thresholds_are_what_decides():
     fr = S.phase_configuration("flock")
-    g = geometry_from_box(fr.box)
-    P = A.classify_phase(fr, g).observables["P"]
-    strict = A.PhaseThresholds(polar_order=min(1.0, P + 0.01))
-    assert A.classify_phase(fr, g, strict).phase == "isotropic"
+    res = _classify_moving(fr)
+    assert res.phase == "flock"
+    P, speed = res.observables["P_mean"], res.observables["rod_speed"]
+    assert _classify_moving(fr, A.PhaseThresholds(polar_order=min(1.0, P + 0.01))).phase == "isotropic"
+    assert _classify_moving(fr, A.PhaseThresholds(flock_speed=speed + 0.01)).phase == "arrested"
 
 
 def test_condensed_layer_in_an_annulus():
@@ -275,24 +285,31 @@ def test_dense_arrested_packing_is_jammed_and_only_that():
     geom = geometry_from_box(fr.box)
     obs = A.phase_observables(fr, geom)
     assert obs["phi_total"] >= 0.85 and obs["phi_r"] > 0.01
-    # arrested: beads rattle by 2 % of a diameter between frames
-    res = A.classify_phase(S.displaced(fr, 0.02, seed=1), geom, previous=fr)
+    # arrested: beads rattle by 2 % of a diameter in a second
+    later = S.displaced(fr, 0.02, seed=1, dt=1.0)
+    res = A.classify_phase(later, geom, window=[fr, later])
     assert res.phase == "jammed" and res.observables["mobility"] < 0.03
-    assert res.observables["interval"] == 1.0
-    # the same packing with beads that move half a diameter between frames is not
-    assert A.classify_phase(S.displaced(fr, 0.5, seed=1), geom, previous=fr).phase != "jammed"
-    # without a previous frame there is no mobility to decide on
+    assert res.observables["window"] == 1.0
+    # the same displacement over 0.1 s is 0.2 d/s: mobile, not jammed
+    sooner = S.displaced(fr, 0.02, seed=1, dt=0.1)
+    res = A.classify_phase(sooner, geom, window=[fr, sooner])
+    assert res.phase != "jammed" and res.observables["mobility"] == pytest.approx(0.2, rel=0.05)
+    # the same packing with beads that move half a diameter in a second is not
+    moved = S.displaced(fr, 0.5, seed=1)
+    assert A.classify_phase(moved, geom, window=[fr, moved]).phase != "jammed"
+    # without a window there is no mobility to decide on
     res = A.classify_phase(fr, geom)
     assert res.phase != "jammed" and np.isnan(res.observables["mobility"])
     # a packing below the jammed fraction with still beads is not jammed either
     t = A.PhaseThresholds(jammed_fraction=obs["phi_total"] + 0.01)
-    assert A.classify_phase(S.displaced(fr, 0.02, seed=1), geom, t, previous=fr).phase != "jammed"
+    assert A.classify_phase(later, geom, t, window=[fr, later]).phase != "jammed"
 
 
 def test_still_dilute_beads_are_not_jammed():
     fr = S.phase_configuration("isotropic")
     geom = geometry_from_box(fr.box)
-    res = A.classify_phase(S.displaced(fr, 0.01, seed=2), geom, previous=fr)
+    later = S.displaced(fr, 0.01, seed=2)
+    res = A.classify_phase(later, geom, window=[fr, later])
     assert res.phase == "isotropic" and res.observables["phi_total"] < 0.7
 
 
@@ -369,19 +386,23 @@ def test_aligned_rods_held_still_are_not_a_flock():
     rods = fr.rods()
     L = float(np.median(rods.length))
 
-    def advanced(by):  # every rod moved ``by`` rod lengths along its own axis
-        return S.make_frame(fr.box, fr.beads()[0], 0.5, rods.centre + by * L * rods.axis, rods.axis)
+    def advanced(by):  # every rod moved ``by`` rod lengths along its own axis, 1 s later
+        return S.make_frame(fr.box, fr.beads()[0], 0.5, rods.centre + by * L * rods.axis, rods.axis, time=1.0)
 
-    moving = A.classify_phase(advanced(0.3), g, previous=fr)
-    assert moving.phase == "flock" and moving.observables["rod_drift"] == pytest.approx(0.3)
-    # the same rods pressed still, e.g. stacked into a corner (rectangle-small): not a flock
-    still = A.classify_phase(advanced(0.0), g, previous=fr)
-    assert still.phase == "isotropic" and still.observables["rod_drift"] == pytest.approx(0.0, abs=1e-12)
-    # walking backwards is not a flock's motion either
-    assert A.classify_phase(advanced(-0.3), g, previous=fr).phase == "isotropic"
-    # without a previous frame there is no drift to decide on: polar order alone decides
-    assert np.isnan(A.classify_phase(fr, g).observables["rod_drift"])
-    assert A.classify_phase(fr, g).phase == "flock"
+    def classify(later):
+        return A.classify_phase(later, g, window=[fr, later])
+    moving = classify(advanced(0.3))
+    assert moving.phase == "flock" and moving.observables["rod_speed"] == pytest.approx(0.3 * np.mean(
+        rods.axis @ (rods.axis.mean(axis=0) / np.linalg.norm(rods.axis.mean(axis=0)))))
+    assert A.rod_drift(advanced(0.3), fr) == pytest.approx(0.3)      # along each rod's own axis
+    # the same rods pressed still, e.g. stacked into a corner (rectangle-small): arrested
+    still = classify(advanced(0.0))
+    assert still.phase == "arrested" and still.observables["rod_speed"] == pytest.approx(0.0, abs=1e-12)
+    # pushed backwards is not a flock's motion either
+    assert classify(advanced(-0.3)).phase == "arrested"
+    # without a window there is no speed to decide on: one frame shows aligned rods
+    assert np.isnan(A.classify_phase(fr, g).observables["rod_speed"])
+    assert A.classify_phase(fr, g).phase == "aligned"
 
 
 def test_dense_arc_its_drift_and_the_rods_capping_it():

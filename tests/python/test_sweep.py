@@ -116,7 +116,7 @@ def fake(tmp_path, monkeypatch, short_run_frames):
     monkeypatch.setenv("FAKE_LMP_CALLS", str(tmp_path / "calls"))
     monkeypatch.delenv("FAKE_LMP_KILL", raising=False)
     monkeypatch.delenv("FAKE_LMP_PIDFILE", raising=False)
-    cfg = config(tmp_path, lmp=str(lmp), phi_b=[0.6, 0.7], phi_r=[0.03], seeds=[1])
+    cfg = config(tmp_path, lmp=str(lmp), phi_b=[0.6, 0.7], phi_r=[0.03], seeds=[1], window=0.2)  # 0.2-s runs
     calls = lambda: (tmp_path / "calls").read_text().split() if (tmp_path / "calls").exists() else []
     return cfg, calls, monkeypatch
 
@@ -158,7 +158,7 @@ def test_a_point_killed_mid_run_is_rerun_and_finished_points_are_kept(fake):
     assert ran == 1 and calls() == ["0.6", "0.7", "0.7"]               # the killed point alone again
     assert (finished / W.RESULT).stat().st_mtime_ns == before          # the finished one kept
     assert [r["phi_b"] for r in results] == [0.6, 0.7]
-    assert results[1]["frames"] == results[0]["frames"] == 2           # a whole dump classified
+    assert results[1]["frames"] == results[0]["frames"] == 3           # a whole dump classified
     assert sweep_quietly(cfg)[1] == 0 and len(calls()) == 3
 
 

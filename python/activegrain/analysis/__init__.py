@@ -8,5 +8,7 @@ from .layers import (LayerSides, find_layers, fit_layer_exponential, interfacial
                      layer_height_modes, layer_profile, layer_sides)
 from .order import (alignment_of, gradient_alignment, nematic_order, polar_order, polarization, rod_environment,
                     smoothed_bead_field, tangential_polarization)
-from .phases import (Phase, PhaseResult, PhaseThresholds, bead_mobility, classify_phase, layer_side_mobility,
-                     majority_phase, phase_observables, rod_drift, segregation_index)
+from .phases import (WINDOW, Phase, PhaseResult, PhaseThresholds, ShortRunWarning, SingleFrameWarning,
+                     bead_mobility, classify_frames, classify_phase, decide_phase, layer_side_mobility,
+                     majority_phase, phase_observables, rod_drift, segregation_index, window_observables,
+                     window_of)

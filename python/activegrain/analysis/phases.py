@@ -1,6 +1,9 @@
-"""The phase of a frame (jammed, condensed, segregated, flock, isotropic) from measured
-observables, and the displacements between frames it uses."""
+"""The phase of a run at each of its frames (jammed, condensed, segregated, flock, arrested,
+isotropic) from measured observables: the frame's structure, and rates and time averages over
+a window of the run in seconds, so that the verdict does not depend on how often the run was
+dumped. Also the displacements between two frames the rates are made of."""
 import enum
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -10,16 +13,23 @@ from .area_fractions import area_fraction_map, global_area_fractions
 from .layers import _from_layer, find_layers, layer_sides
 from .order import polar_order, tangential_polarization
 
+WINDOW = 1.0
+"""Default window of :func:`classify_frames`, in seconds: rates and time averages at a frame are
+taken over the ``WINDOW`` seconds of the run up to it."""
+
 
 class Phase(str, enum.Enum):
     """The phases :func:`classify_phase` tells apart, in the order a tie between them is broken
     (a majority vote over frames or seeds picks the first of the phases counted most often). A
-    phase compares equal to its name and prints as it."""
+    phase compares equal to its name and prints as it. ``ALIGNED`` is only the verdict on a
+    single frame, which cannot tell a flock from arrested rods."""
     ISOTROPIC = "isotropic"
     FLOCK = "flock"
+    ARRESTED = "arrested"
     SEGREGATED = "segregated"
     CONDENSED = "condensed"
     JAMMED = "jammed"
+    ALIGNED = "aligned"
 
     def __str__(self):
         return self.value
@@ -36,17 +46,26 @@ def majority_phase(counts):
 
 @dataclass(frozen=True)
 class PhaseThresholds:
-    """Thresholds of :func:`classify_phase` (see docs/python.rst for their reasons)."""
-    polar_order: float = 0.5      # |<p>| above which rods count as aligned (flock)
+    """Thresholds of :func:`classify_phase` (see docs/python.rst for their reasons). Rates are
+    per second: frames must carry times in seconds."""
+    polar_order: float = 0.5      # time-averaged |<p>| from which rods count as aligned
     segregation: float = 0.3      # segregation index above which rods and beads demix
     layer_fraction: float = 0.5   # share of rods in active layers for an active interface
     layer_contrast: float = 0.1   # phi_b ahead minus behind a layer for it to be active
     layer_alignment: float = 0.5  # |<p>| of a layer's rods for it to be active
     jammed_fraction: float = 0.84  # phi_b + phi_r from which an arrested packing counts as jammed
-    jammed_mobility: float = 0.1  # rms bead displacement between frames, in bead diameters, below
-                                  # which the dynamics count as arrested
-    flock_drift: float = 0.05     # rods' mean advance along their axes between frames, in rod
-                                  # lengths, below which aligned rods are held still, not a flock
+    jammed_mobility: float = 0.1  # beads' rms displacement over the window per second, in bead
+                                  # diameters per second, below which the beads count as arrested
+    flock_speed: float = 0.05     # the rods' mean velocity along their mean heading, in rod lengths
+                                  # per second, below which aligned rods are arrested, not a flock
+
+
+class ShortRunWarning(UserWarning):
+    """The run is shorter than the window: rates and averages are taken over the whole run."""
+
+
+class SingleFrameWarning(UserWarning):
+    """One frame only: classified by its structure (:func:`classify_phase` without a window)."""
 
 
 def segregation_index(frame, geometry, cell=None):
@@ -138,33 +157,113 @@ class PhaseResult:
     observables: dict = field(default_factory=dict)
 
 
-def phase_observables(frame, geometry, thresholds=None, previous=None):
+def window_of(times, k, window=WINDOW):
+    """Indices of the frames in the window of frame ``k``: the frames whose times lie within the
+    ``window`` seconds up to frame ``k`` ([t_k - window, t_k]); for a frame less than ``window``
+    after the first, the first ``window`` seconds of the run instead (a window never reaches
+    before the run); the whole run if it is shorter than ``window``. ``times``: the frames'
+    times in seconds, in order."""
+    times = np.asarray(times, float)
+    if not window > 0:
+        raise ValueError(f"window {window}: seconds, above 0")
+    if np.any(np.diff(times) < 0):
+        raise ValueError("the frames are not in time order")
+    eps = 1e-6 * window
+    start = max(times[k] - window, times[0])
+    return [int(j) for j in np.flatnonzero((times >= start - eps) & (times <= start + window + eps))]
+
+
+def _unwrapped(frames, positions):
+    """Each row's displacement from the first frame to the last: the sum of the minimum-image
+    displacements between consecutive frames."""
+    total = np.zeros_like(positions[0])
+    for fr, a, b in zip(frames[1:], positions[:-1], positions[1:]):
+        total += fr.box.minimum_image(b - a)
+    return total
+
+
+def window_observables(frames, rods=None):
+    """Rates and time averages over ``frames``, the frames of one run in a window (in time order,
+    times in seconds; :func:`window_of`):
+
+    ``window``: the seconds from the first frame to the last, over which the rates are taken;
+    ``window_frames``: their number; ``P_mean``: the rods' polar order averaged over that time
+    (trapezoidal rule); ``rod_speed``: the rods' mean velocity along their mean heading, in
+    median rod lengths per second -- their mean displacement from the first frame to the last
+    (each rod's summed over consecutive frames, minimum image) per second, projected on the
+    direction of <p> at the first frame plus <p> at the last (positive: the rods move the way
+    they point; a group that carries a few reversed rods along still moves forward);
+    ``mobility``: the beads' rms displacement from the first frame to the last per second, in
+    median bead diameters per second. Rods are matched by rod ID (those in every frame) and
+    beads by atom ID. Rates need two frames at different times; with one they are NaN, and
+    ``P_mean`` is that frame's polar order. ``rods``: the frames' :class:`RodSet` (computed if
+    None)."""
+    frames = list(frames)
+    if not frames:
+        raise ValueError("window_observables: no frames")
+    rods = [fr.rods() for fr in frames] if rods is None else list(rods)
+    times = np.array([fr.time for fr in frames], float)
+    span = float(times[-1] - times[0])
+    P = np.array([polar_order(r.axis)[1] if len(r) else 0.0 for r in rods])
+    obs = {"window": span, "window_frames": len(frames),
+           "P_mean": float(np.sum(0.5 * (P[1:] + P[:-1]) * np.diff(times)) / span) if span > 0 else float(P[-1]),
+           "rod_speed": float("nan"), "mobility": float("nan")}
+    if span <= 0:
+        return obs
+    if len(rods[0]):
+        common = rods[0].ids
+        for r in rods[1:]:
+            common = np.intersect1d(common, r.ids)
+        if len(common):
+            at = [np.searchsorted(r.ids, common) for r in rods]      # a RodSet's IDs are sorted
+            d = _unwrapped(frames, [r.centre[i] for r, i in zip(rods, at)]).mean(axis=0)
+            heading = rods[0].axis[at[0]].mean(axis=0) + rods[-1].axis[at[-1]].mean(axis=0)
+            norm = float(np.hypot(*heading))
+            length = float(np.median(rods[0].length))
+            obs["rod_speed"] = float(d @ heading / norm / length / span) if norm > 0 else 0.0
+    beads = [fr.is_bead for fr in frames]
+    if np.any(beads[0]):
+        ids = frames[0].ids[beads[0]]
+        for fr, b in zip(frames[1:], beads[1:]):
+            if not np.array_equal(fr.ids[b], ids):
+                raise ValueError(f"the frames at steps {frames[0].step} and {fr.step} do not hold the "
+                                 "same beads (atom IDs)")
+        d = _unwrapped(frames, [fr.pos[b, :2] for fr, b in zip(frames, beads)])
+        diameter = 2 * float(np.median(frames[0].radius[beads[0]]))
+        obs["mobility"] = float(np.sqrt(np.mean(np.sum(d * d, axis=1))) / diameter / span)
+    return obs
+
+
+def phase_observables(frame, geometry, thresholds=None, window=None, _rods=None):
     """The measured observables :func:`classify_phase` decides on.
 
-    ``phi_total`` = phi_b + phi_r; with an earlier frame ``previous`` of the same run,
-    ``mobility``: the beads' rms displacement since then in bead diameters
-    (:func:`bead_mobility`; NaN without one), ``rod_drift``: the rods' mean advance along their
-    axes since then in rod lengths (:func:`rod_drift`; NaN without one or without rods) and
-    ``interval``, the time between the frames.
+    Of the frame itself (its structure): ``phi_b``, ``phi_r``, ``phi_total`` = phi_b + phi_r,
+    ``n_rods``, the polar order ``P``, the ``segregation`` index, and the layer observables:
+    those of the densest layer (``layer_*``, ``phi_ahead``, ``phi_behind``), and over up to two
+    layers the number of *active* ones (aligned and with a bead contrast, per ``thresholds``)
+    and the share of rods they hold (``active_layer_fraction``). Two active layers pointing at
+    each other trap a condensate.
 
-    Layer observables: those of the densest layer (``layer_*``, ``phi_ahead``,
-    ``phi_behind``), and over up to two layers the number of *active* ones (aligned and
-    with a bead contrast, per ``thresholds``) and the share of rods they hold
-    (``active_layer_fraction``). Two active layers pointing at each other trap a condensate.
+    Over ``window``, frames of the same run around it (:func:`window_of`; times in seconds):
+    ``window``, ``window_frames``, ``P_mean``, ``rod_speed`` (rod lengths per second) and
+    ``mobility`` (bead diameters per second), as :func:`window_observables` defines them.
+    Without a window (a single frame) the rates are NaN and ``P_mean`` is ``P``. (``_rods``:
+    the window frames' rod sets, when the caller has them.)
     """
     t = thresholds or PhaseThresholds()
-    rods = frame.rods()
+    frames = [frame] if window is None else list(window)
+    rods_of = list(_rods) if _rods is not None else [fr.rods() for fr in frames]
+    rods = next((r for fr, r in zip(frames, rods_of) if fr is frame), None)
+    rods = frame.rods() if rods is None else rods
     phi_b, phi_r = global_area_fractions(frame, geometry)
     obs = {"phi_b": phi_b, "phi_r": phi_r, "phi_total": phi_b + phi_r, "n_rods": len(rods),
-           "mobility": float("nan") if previous is None else bead_mobility(frame, previous),
-           "interval": float("nan") if previous is None else frame.time - previous.time}
+           "P": polar_order(rods.axis)[1] if len(rods) else 0.0}
+    obs.update(window_observables(frames, rods_of))
     if len(rods) == 0:  # beads only: nothing to order, segregate or layer
-        obs.update(P=0.0, rod_drift=float("nan"), segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
+        obs.update(segregation=0.0, layer_fraction=0.0, layer_P=0.0, phi_ahead=float("nan"),
                    phi_behind=float("nan"), layer_contrast=0.0, layer_position=float("nan"),
                    layer_coord="", n_active_layers=0, active_layer_fraction=0.0)
         return obs
-    obs["P"] = polar_order(rods.axis)[1]
-    obs["rod_drift"] = float("nan") if previous is None else rod_drift(frame, previous)
     if isinstance(geometry, Annulus):
         obs["P_tangential"] = tangential_polarization(rods, geometry)
     obs["segregation"] = segregation_index(frame, geometry)
@@ -179,36 +278,98 @@ def phase_observables(frame, geometry, thresholds=None, previous=None):
     return obs
 
 
-def classify_phase(frame, geometry, thresholds=None, previous=None):
-    """Jammed / condensed (by an active interface) / segregated / flock / isotropic.
+def decide_phase(obs, thresholds=None):
+    """The phase that the observables ``obs`` (:func:`phase_observables`) give, in this order:
 
-    Decided in this order on measured observables (:func:`phase_observables`):
+    1. ``jammed``: ``phi_total`` >= ``jammed_fraction`` and ``mobility`` < ``jammed_mobility``
+       (dense and arrested; never without a window, whose mobility is NaN);
+    2. ``condensed``: active layers hold at least ``layer_fraction`` of the rods;
+    3. ``segregated``: ``segregation`` >= ``segregation``;
+    4. ``P_mean`` >= ``polar_order``: ``flock`` if ``rod_speed`` >= ``flock_speed``, ``arrested``
+       if below, ``aligned`` if it is NaN (one frame: flock or arrested cannot be told);
+    5. ``isotropic`` otherwise.
+    """
+    t = thresholds or PhaseThresholds()
+    if obs["phi_total"] >= t.jammed_fraction and obs["mobility"] < t.jammed_mobility:
+        return Phase.JAMMED
+    if obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
+        return Phase.CONDENSED
+    if obs["segregation"] >= t.segregation:
+        return Phase.SEGREGATED
+    if obs["P_mean"] >= t.polar_order:
+        if not np.isfinite(obs["rod_speed"]):
+            return Phase.ALIGNED
+        return Phase.FLOCK if obs["rod_speed"] >= t.flock_speed else Phase.ARRESTED
+    return Phase.ISOTROPIC
 
-    0. ``jammed`` (only with ``previous``, an earlier frame of the same run): the total area
-       fraction phi_b + phi_r is at least ``jammed_fraction`` and the beads' rms
-       displacement since ``previous`` is below ``jammed_mobility`` bead diameters (arrested
-       dynamics; take frames far enough apart that a fluid's beads move further);
-    1. ``condensed``: active layers (aligned, |<p>| >= ``layer_alignment``, with the bead
+
+def classify_phase(frame, geometry, thresholds=None, window=None):
+    """Jammed / condensed (by an active interface) / segregated / flock / arrested / isotropic.
+
+    ``window``: the frames of the same run over which the rates and the time average of the
+    polar order are taken (in time order, times in seconds, ``frame`` among them; usually the
+    frames of :func:`window_of`, as :func:`classify_frames` gives them). Decided on
+    :func:`phase_observables` by :func:`decide_phase`:
+
+    1. ``jammed``: the total area fraction is at least ``jammed_fraction`` and the beads' rms
+       displacement over the window is below ``jammed_mobility`` bead diameters per second;
+    2. ``condensed``: active layers (aligned, |<p>| >= ``layer_alignment``, with the bead
        fraction ahead exceeding the one behind by ``layer_contrast``; one layer, or two
        trapping a condensate) hold at least ``layer_fraction`` of the rods;
-    2. ``segregated``: segregation index >= ``segregation``;
-    3. ``flock``: rod polar order |<p>| >= ``polar_order``, and, with ``previous``, the rods
-       advance along their axes by at least ``flock_drift`` rod lengths since then (aligned
-       rods held still, e.g. stacked against a wall, are not a flock);
-    4. ``isotropic`` otherwise.
+    3. ``segregated``: segregation index >= ``segregation``;
+    4. the polar order averaged over the window is at least ``polar_order``: ``flock`` when the
+       rods advance along their axes by at least ``flock_speed`` rod lengths per second,
+       ``arrested`` (aligned and held still, e.g. pressed against a wall) when slower;
+    5. ``isotropic`` otherwise.
 
+    Without a window the frame alone is classified by what one frame shows: never jammed (no
+    mobility), and aligned rods (|<p>| >= ``polar_order``) are ``aligned``, not flock or arrested.
     ``thresholds``: a :class:`PhaseThresholds`, the defaults if None.
     """
     t = thresholds or PhaseThresholds()
-    obs = phase_observables(frame, geometry, t, previous)
-    if obs["phi_total"] >= t.jammed_fraction and obs["mobility"] < t.jammed_mobility:
-        phase = Phase.JAMMED
-    elif obs["n_active_layers"] > 0 and obs["active_layer_fraction"] >= t.layer_fraction:
-        phase = Phase.CONDENSED
-    elif obs["segregation"] >= t.segregation:
-        phase = Phase.SEGREGATED
-    elif obs["P"] >= t.polar_order and (previous is None or obs["rod_drift"] >= t.flock_drift):
-        phase = Phase.FLOCK
-    else:
-        phase = Phase.ISOTROPIC
-    return PhaseResult(phase, obs)
+    obs = phase_observables(frame, geometry, t, window)
+    return PhaseResult(decide_phase(obs, t), obs)
+
+
+def classify_frames(frames, geometry, window=WINDOW, thresholds=None, which=None):
+    """The phase of a run at its frames ``which`` (indices into ``frames``; default: all), each
+    with its window of ``window`` seconds (:func:`window_of`) from all of ``frames``: the same
+    run, in time order, times in seconds. Returns a list of :class:`PhaseResult`.
+
+    The verdict at a frame depends on the run, not on which frames are classified: thin the
+    output with ``which``, not ``frames``. A window must hold two frames: ValueError where it
+    holds only its own frame (frames further apart than ``window``); a :class:`ShortRunWarning`
+    where the run is shorter than ``window`` (its rates are then over the whole run). A single
+    frame is classified by what it shows (:func:`classify_phase` without a window), with a
+    :class:`SingleFrameWarning`."""
+    frames = list(frames)
+    if not frames:
+        raise ValueError("no frames to classify")
+    times = np.array([fr.time for fr in frames], float)
+    which = range(len(frames)) if which is None else [k % len(frames) for k in which]
+    if len(frames) == 1:
+        warnings.warn(f"a single frame (step {frames[0].step}): classified by what one frame shows, its "
+                      "structure (no rates: never jammed, and aligned rods are 'aligned', not flock or "
+                      "arrested)", SingleFrameWarning, stacklevel=2)
+        return [classify_phase(frames[0], geometry, thresholds) for _ in which]
+    if times[-1] - times[0] < window * (1 - 1e-6):
+        warnings.warn(f"the run spans {times[-1] - times[0]:g} s, less than the {window:g} s window: "
+                      "rates and averages over the whole run", ShortRunWarning, stacklevel=2)
+    rods = {}
+
+    def rods_of(j):
+        if j not in rods:
+            rods[j] = frames[j].rods()
+        return rods[j]
+    results = []
+    for k in which:
+        idx = window_of(times, k, window)
+        if times[idx[-1]] <= times[idx[0]]:
+            gap = np.diff(times)
+            raise ValueError(f"the {window:g} s window of the frame at step {frames[k].step} holds no other "
+                             f"frame: frames are up to {gap.max():g} s apart; give a window of at least "
+                             f"{gap.max():g} s (--window) or dump more often")
+        obs = phase_observables(frames[k], geometry, thresholds, [frames[j] for j in idx],
+                                [rods_of(j) for j in idx])
+        results.append(PhaseResult(decide_phase(obs, thresholds), obs))
+    return results
