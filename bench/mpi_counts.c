@@ -13,9 +13,9 @@
 #include <string.h>
 
 enum { SEND, ALLREDUCE, BCAST, BARRIER, ALLGATHER, ALLGATHERV, REDUCE, SCAN, EXSCAN, GATHER,
-       GATHERV, SCATTER, ALLTOALL, ALLTOALLV, REDUCE_SCATTER, NKIND };
+       GATHERV, SCATTER, SCATTERV, ALLTOALL, ALLTOALLV, REDUCE_SCATTER, NKIND };
 static const char *name[NKIND] = {"send", "allreduce", "bcast", "barrier", "allgather",
-  "allgatherv", "reduce", "scan", "exscan", "gather", "gatherv", "scatter", "alltoall",
+  "allgatherv", "reduce", "scan", "exscan", "gather", "gatherv", "scatter", "scatterv", "alltoall",
   "alltoallv", "reduce_scatter"};
 static long long calls[NKIND], bytes[NKIND];
 static long long *to_rank;   /* messages sent to each rank (allocated at the first send) */
@@ -88,6 +88,9 @@ int MPI_Gatherv(const void *sb, int sn, MPI_Datatype st, void *rb, const int *rn
 int MPI_Scatter(const void *sb, int sn, MPI_Datatype st, void *rb, int rn, MPI_Datatype rt,
                 int root, MPI_Comm c)
 { count(SCATTER, rn, rt); return PMPI_Scatter(sb, sn, st, rb, rn, rt, root, c); }
+int MPI_Scatterv(const void *sb, const int *sn, const int *displ, MPI_Datatype st, void *rb, int rn,
+                 MPI_Datatype rt, int root, MPI_Comm c)
+{ count(SCATTERV, rn, rt); return PMPI_Scatterv(sb, sn, displ, st, rb, rn, rt, root, c); }
 int MPI_Alltoall(const void *sb, int sn, MPI_Datatype st, void *rb, int rn, MPI_Datatype rt,
                  MPI_Comm c)
 { count(ALLTOALL, sn, st); return PMPI_Alltoall(sb, sn, st, rb, rn, rt, c); }

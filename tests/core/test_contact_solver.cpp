@@ -1,10 +1,12 @@
 // Many contacts at once: isolated contacts by Stronge's law, islands by a compliant impact.
+#include "ag_contact_energy.h"
 #include "ag_contact_solver.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -395,6 +397,51 @@ TEST(ContactSolver, DenseClusterSettlesWithoutTheSlowTail)
   EXPECT_TRUE(result.converged);
   EXPECT_LE(left, 1e-2 * fastest * (1 + 1e-9));
   EXPECT_LE(total_energy(solver, plate_velocity), energy_before * (1 + 1e-12));
+}
+
+TEST(ContactSolver, AnIslandSolvedElsewhereLeavesTheOthersAsTheyWere)
+{
+  // Two clusters in one solver, the second's contacts solved elsewhere (by a solver that sees its
+  // island whole, IslandExchange): the first solves as before, bit for bit, the second's bodies
+  // stay as they were, and the other solver's results, set back, give the energy ledger the
+  // numbers of one solve of both.
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Cluster first = random_cluster(rng), second = random_cluster(rng);
+    auto add = [](ContactSolver &solver, const Cluster &cl) {
+      const int offset = solver.num_bodies();
+      for (const RigidBodyState &b : cl.bodies) solver.add_body(b);
+      for (const Cluster::Touch &t : cl.touches)
+        solver.add_contact(t.body1 + offset, t.body2 + offset, t.point, t.n, t.material, t.min_separation);
+    };
+    ContactSolver both, split, elsewhere;
+    add(both, first);
+    add(both, second);
+    add(split, first);
+    add(split, second);
+    add(elsewhere, second);
+    const int n1 = static_cast<int>(first.touches.size()), n2 = static_cast<int>(second.touches.size());
+    for (int c = n1; c < n1 + n2; ++c) split.solve_elsewhere(c);
+    both.solve();
+    split.solve();
+    elsewhere.solve();
+    for (int c = 0; c < n1; ++c) {
+      EXPECT_EQ(split.impulse(c).x, both.impulse(c).x) << "trial " << trial;
+      EXPECT_EQ(split.impulse(c).z, both.impulse(c).z) << "trial " << trial;
+    }
+    const int b1 = static_cast<int>(first.bodies.size());
+    for (int b = 0; b < static_cast<int>(second.bodies.size()); ++b)
+      EXPECT_EQ(norm(split.body(b1 + b).v - second.bodies[b].v), 0.0) << "trial " << trial;
+    for (int c = 0; c < n2; ++c) {
+      const ContactSolver::Contact &solved = elsewhere.contact(c);
+      split.set_solution(n1 + c, solved.impulse, solved.late, solved.velocity_after);
+      EXPECT_NEAR(norm(solved.impulse - both.impulse(n1 + c)), 0.0, 1e-12 * (1 + norm(both.impulse(n1 + c))));
+      const Vec3 before = relative_velocity(std::vector<RigidBodyState>{second.bodies}, elsewhere.contact(c));
+      const ContactEnergy in_both = contact_energy(both, n1 + c, before, 0.0);
+      const ContactEnergy in_split = contact_energy(split, n1 + c, before, 0.0);
+      EXPECT_NEAR(in_split.dissipated, in_both.dissipated, 1e-12 * (1 + std::fabs(in_both.dissipated)));
+    }
+  }
 }
 
 TEST(ContactSolver, BeadChainDoesNotGainEnergyAndConservesMomentum)
