@@ -3,7 +3,10 @@ the system as a gzipped data file PREFIX-<seconds>s.data.gz whose first line hol
 and -var from FILE continues from it: the clock at the state's time, the same atoms and rods, and
 the run's first values those the state was written with (a continuation of the physics, not bit for
 bit: later values drift apart as chaotic collisions amplify the lost half impulses of the state's
-last step). On channel-small, 0.05 s written, continued to 0.06 s, on 1 and 2 ranks."""
+last step). On channel-small, 0.05 s written, continued to 0.06 s, on 1 and 2 ranks. The header also
+records the physics the state was made with (seed, commit, MPI ranks, pair gran/impulse's settings,
+the plates' rod friction, restitution and roughness); a continuation under other settings warns of
+each and goes on; a header without them (an older state) reads as before."""
 import gzip
 import os
 import pathlib
@@ -276,3 +279,109 @@ def test_a_state_with_missing_or_inconsistent_molecule_ids_is_refused_with_the_r
     errors = [line for line in done.stdout.splitlines() if line.startswith("ERROR")]
     assert errors and errors[0].startswith(expected.format(path=path)), done.stdout[-2000:]
     assert "Loop time" not in done.stdout
+
+
+# The physics in.write-state records after the geometry, as in.create's defaults set them.
+DEFAULT_PHYSICS = {"seed": "2024", "resolution": "50", "window": "5e-6", "resting": "no",
+                   "mu_rod_plate": "0.03", "e_rod_plate": "0.1", "rough": "0.06", "rough_length": "5e-6"}
+MADE_BY = re.compile(r"^ActiveGrain state: made by commit (\S+) on (\S+) MPI ranks; this run: commit (\S+) on (\d+) MPI ranks$", re.M)
+NOT_RECORDED = "does not record the physics it was made with"
+
+
+def physics(title):
+    """The key value pairs of a state's header after its geometry (Lx, Ly, ..., seed, commit, ...)."""
+    words = title.split()
+    pairs = words[words.index("geometry") + 2:]
+    assert len(pairs) % 2 == 0, title
+    return dict(zip(pairs[::2], pairs[1::2]))
+
+
+def warnings(stdout):
+    return [line for line in stdout.splitlines() if line.startswith("WARNING: in.create")]
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_a_state_records_the_physics_it_was_made_with(runs, ranks):
+    """Written from a restart file: the deck's settings, the commit and the run's ranks unknown
+    (neither -var commit nor -var ranks given; LAMMPS does not tell a restart file's rank count)."""
+    recorded = physics(read_state(runs(ranks)["state"])[0])
+    assert {key: recorded[key] for key in DEFAULT_PHYSICS} == DEFAULT_PHYSICS
+    assert recorded["commit"] == recorded["ranks"] == "unknown"
+    assert (recorded["Lx"], recorded["Ly"], recorded["phi_b"], recorded["phi_r"]) == ("60e-3", "15e-3", "0.75", "0.04")
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_a_created_state_records_its_ranks_the_commit_given_and_the_settings_changed(tmp_path, ranks):
+    (tmp_path / "states").mkdir()
+    wrote = channel(tmp_path / "write", ranks, "-var", "state", str(tmp_path / "states" / "created"),
+                    "-var", "commit", "abc1234", "-var", "resting", "yes", "-var", "mu_rod_plate", "0.003",
+                    "-var", "seed", "7")
+    state = pathlib.Path(WROTE.search(wrote).group(1))
+    recorded = physics(read_state(state)[0])
+    assert recorded == {"Lx": "60e-3", "Ly": "15e-3", "R_in": "25e-3", "R_out": "60e-3", "phi_b": "0.75",
+                        "phi_r": "0.04", **DEFAULT_PHYSICS, "seed": "7", "commit": "abc1234",
+                        "ranks": str(ranks), "resting": "yes", "mu_rod_plate": "0.003"}
+    # written again from it (-var from, -var state): its commit and ranks are kept, -var ranks overrides
+    again = channel(tmp_path / "again", 1, "-var", "from", str(state), "-var", "state", str(tmp_path / "states" / "again"),
+                    "-var", "resting", "yes", "-var", "mu_rod_plate", "0.003", "-var", "seed", "7")
+    assert warnings(again) == []
+    assert physics(read_state(pathlib.Path(WROTE.search(again).group(1)))[0]) == recorded
+    told = channel(tmp_path / "told", 1, "-var", "from", str(state), "-var", "state", str(tmp_path / "states" / "told"),
+                   "-var", "resting", "yes", "-var", "mu_rod_plate", "0.003", "-var", "seed", "7", "-var", "ranks", "4")
+    assert physics(read_state(pathlib.Path(WROTE.search(told).group(1)))[0])["ranks"] == "4"
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_a_continuation_at_the_states_physics_warns_of_nothing_and_says_who_made_it(runs, ranks):
+    continued = runs(ranks)["continued"]
+    assert warnings(continued) == []
+    assert NOT_RECORDED not in continued
+    assert MADE_BY.search(continued).groups() == ("unknown", "unknown", "unknown", str(ranks))
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_a_continuation_under_other_physics_warns_of_each_difference_and_goes_on(runs, tmp_path, ranks):
+    """-var resting yes and -var seed 7 against the state's no and 2024: a WARNING naming each, the run
+    completes; the window written otherwise (5.0e-6 against 5e-6) is the same number, no warning."""
+    r = runs(ranks)
+    out = channel(tmp_path / "other", ranks, "-var", "from", str(r["state"]), "-var", "resting", "yes",
+                  "-var", "seed", "7", "-var", "window", "5.0e-6", "-var", "commit", "abc1234")
+    assert warnings(out) == [
+        f"WARNING: in.create: -var from {r['state']}: state made with seed 2024, this run has seed 7",
+        f"WARNING: in.create: -var from {r['state']}: state made with resting no, this run has resting yes"]
+    assert MADE_BY.search(out).groups() == ("unknown", "unknown", "abc1234", str(ranks))
+    assert COMPLETED.findall(out) == COMPLETED.findall(r["whole"])
+    assert sorted(thermo(out)) == [500, 550, 600]
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_an_older_header_without_the_physics_still_reads(runs, tmp_path, ranks):
+    """The header cut after the seed (as states were written before the physics was recorded): the
+    continuation says that the physics is not recorded and is the same run as from the full header."""
+    r = runs(1)
+    with gzip.open(r["state"], "rt") as f:
+        title, rest = f.read().split("\n", 1)
+    old = title[:title.index(" commit ")]
+    assert old.endswith(" seed 2024") and HEADER.match(old)
+    path = tmp_path / "old-0.05s.data.gz"
+    with gzip.open(path, "wt") as f:
+        f.write(old + "\n" + rest)
+    out = channel(tmp_path / "old", ranks, "-var", "from", str(path))
+    assert warnings(out) == []
+    assert f"ActiveGrain state: {path} {NOT_RECORDED}" in out
+    assert not MADE_BY.search(out)
+    m = CONTINUING.search(out)
+    assert m and m.group(2) == r["wrote_match"].group(2) and int(m.group(3)) == STATE_STEP
+    assert thermo(out)[500][1:] == pytest.approx(thermo(r["continued"])[500][1:], rel=1e-6)
+    assert COMPLETED.findall(out) == COMPLETED.findall(r["whole"])
+
+
+STATES = sorted(EXAMPLES.glob("*/states/*.data.gz"))
+
+
+@pytest.mark.parametrize("path", STATES, ids=[p.name for p in STATES])
+def test_every_shipped_state_records_its_physics(path):
+    recorded = physics(read_state(path)[0])
+    assert set(DEFAULT_PHYSICS) | {"commit", "ranks"} <= set(recorded), path
+    assert recorded["resting"] in ("yes", "no")
+    assert recorded["ranks"] in ("1", "2")
