@@ -28,6 +28,7 @@ ComputeAreafracChunk::ComputeAreafracChunk(LAMMPS *lmp, int narg, char **arg) :
   size_array_rows = 0;
   size_array_rows_variable = 1;
   extarray = 0;
+  comm_forward = LocalRods::POSITION_COLUMNS;
   ComputeAreafracChunk::init();
   ComputeAreafracChunk::allocate();
 }
@@ -65,7 +66,7 @@ void ComputeAreafracChunk::compute_array()
 {
   ComputeChunk::compute_array();
   const int *ichunk = cchunk->ichunk;
-  rods.update(groupbit);
+  rods.update(this, groupbit);
 
   for (int c = 0; c < nchunk; ++c)
     for (int k = 0; k < NSUMS; ++k) sums[c][k] = 0.0;

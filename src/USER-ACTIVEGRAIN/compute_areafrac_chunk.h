@@ -19,6 +19,11 @@ class ComputeAreafracChunk : public ComputeChunk {
   void init() override;
   void compute_array() override;
   double memory_usage() override;
+  int pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc) override
+  {
+    return rods.pack_positions(n, list, buf, pbc_flag, pbc);
+  }
+  void unpack_forward_comm(int n, int first, double *buf) override { rods.unpack_positions(n, first, buf); }
 
  private:
   LocalRods rods;

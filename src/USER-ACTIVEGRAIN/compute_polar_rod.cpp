@@ -24,6 +24,7 @@ ComputePolarRod::ComputePolarRod(LAMMPS *lmp, int narg, char **arg) :
   size_local_rows = 0;
   extscalar = extvector = 0;
   timeflag = 1;
+  comm_forward = LocalRods::POSITION_COLUMNS;
   vector = new double[NVECTOR];
 }
 
@@ -35,7 +36,7 @@ ComputePolarRod::~ComputePolarRod()
 
 void ComputePolarRod::init()
 {
-  rods.update(groupbit);    // fails early, naming this style, without a rod fix
+  rods.check_provider();    // fails early, naming this style
 }
 
 double ComputePolarRod::compute_scalar()
@@ -52,7 +53,7 @@ double ComputePolarRod::compute_scalar()
 void ComputePolarRod::compute_vector()
 {
   invoked_vector = update->ntimestep;
-  rods.update(groupbit);
+  rods.update(this, groupbit);
   enum { SUM_PX, SUM_PY, SUM_AXIS_Z, SUM_COS2, SUM_SIN2, SUM_COUNT, NSUM };
   double sum[NSUM] = {};
   for (const auto &rod : rods.rods()) {
@@ -82,7 +83,7 @@ void ComputePolarRod::compute_vector()
 void ComputePolarRod::compute_local()
 {
   invoked_local = update->ntimestep;
-  rods.update(groupbit);
+  rods.update(this, groupbit);
   int rows = 0;
   for (const auto &rod : rods.rods()) rows += rod.counted_here;
   if (rows > max_rows) {

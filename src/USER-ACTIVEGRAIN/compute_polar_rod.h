@@ -21,6 +21,11 @@ class ComputePolarRod : public Compute {
   void compute_vector() override;
   void compute_local() override;
   double memory_usage() override;
+  int pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc) override
+  {
+    return rods.pack_positions(n, list, buf, pbc_flag, pbc);
+  }
+  void unpack_forward_comm(int n, int first, double *buf) override { rods.unpack_positions(n, first, buf); }
 
  private:
   LocalRods rods;

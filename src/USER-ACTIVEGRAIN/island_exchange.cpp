@@ -1,9 +1,11 @@
 #include "island_exchange.h"
 
 #include "comm.h"
+#include "error.h"
 #include "solver_bodies.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <type_traits>
 
@@ -11,8 +13,7 @@ using namespace LAMMPS_NS;
 using ActiveGrain::ContactSolver;
 
 static_assert(std::is_trivially_copyable<ActiveGrain::RigidBodyState>::value &&
-                  std::is_trivially_copyable<ActiveGrain::Vec3>::value &&
-                  std::is_trivially_copyable<ActiveGrain::ContactMaterial>::value,
+                  std::is_trivially_copyable<ActiveGrain::SolverContact>::value,
               "island contacts travel as bytes");
 
 void IslandExchange::split(ContactSolver &solver, const SolverBodies &bodies, const ContactAssembly &assembly)
@@ -77,14 +78,7 @@ void IslandExchange::mark_crossing_islands(ContactSolver &solver, const SolverBo
     packed.key2 = movable(contact.body2) ? bodies.key_of(contact.body2) : 0;
     packed.body1 = solver.body(contact.body1);
     packed.body2 = solver.body(contact.body2);
-    packed.r1 = contact.r1;
-    packed.r2 = contact.r2;
-    packed.n = contact.n;
-    packed.gain = contact.gain;
-    packed.material = contact.material;
-    packed.min_separation = contact.min_separation;
-    packed.time = contact.time;
-    packed.resting_key = contact.key;
+    packed.contact = contact;
     packed.shuffle = order.shuffle;
     packed.identity[0] = std::get<0>(order.identity);
     packed.identity[1] = std::get<1>(order.identity);
@@ -104,6 +98,10 @@ ContactSolver::Result IslandExchange::solve(ContactSolver &solver, const ActiveG
   const int bytes = static_cast<int>(crossing.size() * sizeof(CrossingContact));
   MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
   if (me == 0) {
+    // MPI counts bytes in an int: millions of contacts in islands across cuts are beyond this solve.
+    if (std::accumulate(counts.begin(), counts.end(), 0LL) > std::numeric_limits<int>::max())
+      error->one(FLERR, "Pair gran/impulse: islands across sub-domains hold more than {} contacts, too many to "
+                 "solve whole on one rank", std::numeric_limits<int>::max() / sizeof(CrossingContact));
     std::exclusive_scan(counts.begin(), counts.end(), displacements.begin(), 0);
     gathered.resize((displacements.back() + counts.back()) / sizeof(CrossingContact));
   }
@@ -146,11 +144,12 @@ ContactSolver::Result IslandExchange::solve_gathered(const ActiveGrain::SolverSe
     return merged.find_or_insert(key, [&] { return gathered_solver.add_body(state); });
   };
   for (int k : gather_order) {
-    const CrossingContact &c = gathered[k];
-    const int b1 = body(c.key1, c.body1), b2 = body(c.key2, c.body2);
+    const CrossingContact &packed = gathered[k];
+    const ActiveGrain::SolverContact &c = packed.contact;
+    const int b1 = body(packed.key1, packed.body1), b2 = body(packed.key2, packed.body2);
     const int added = gathered_solver.add_contact_arms(b1, b2, c.r1, c.r2, c.n, c.material, c.min_separation,
                                                        c.gain, c.time);
-    gathered_solver.set_key(added, c.resting_key);
+    gathered_solver.set_key(added, c.key);
   }
   const ContactSolver::Result result = gathered_solver.solve(settings);
   gathered_solutions.resize(gathered.size());

@@ -37,15 +37,13 @@ class IslandExchange : protected Pointers {
   double memory_usage() const;
 
  private:
-  // A contact as it travels: its bodies by key (0: a wall's, never merged) and state, its
-  // geometry, material and prediction, and its keys for the order and the resting solve.
+  // A contact as it travels: its bodies by key (0: a wall's, never merged) and state, the contact
+  // as this rank's solver holds it (its body indices are this rank's), and its order key.
   struct CrossingContact {
     std::uint64_t key1, key2;
     ActiveGrain::RigidBodyState body1, body2;
-    ActiveGrain::Vec3 r1, r2, n, gain;
-    ActiveGrain::ContactMaterial material;
-    double min_separation, time;
-    std::uint64_t resting_key, shuffle;
+    ActiveGrain::SolverContact contact;
+    std::uint64_t shuffle;
     std::int64_t identity[4];    // ContactAssembly::ContactIdentity
   };
   struct Solution {

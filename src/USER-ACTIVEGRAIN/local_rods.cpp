@@ -2,6 +2,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
@@ -27,8 +28,31 @@ RigidBodyProvider *LocalRods::find_provider()
   return nullptr;
 }
 
-void LocalRods::update(int groupbit)
+// As LAMMPS's atom styles pack positions for ghosts, across periodic boundaries too.
+int LocalRods::pack_positions(int n, int *list, double *buf, int pbc_flag, int *pbc) const
 {
+  double shift[3] = {0.0, 0.0, 0.0};
+  if (pbc_flag) {
+    shift[0] = pbc[0] * domain->xprd + (domain->triclinic ? pbc[5] * domain->xy + pbc[4] * domain->xz : 0.0);
+    shift[1] = pbc[1] * domain->yprd + (domain->triclinic ? pbc[3] * domain->yz : 0.0);
+    shift[2] = pbc[2] * domain->zprd;
+  }
+  int m = 0;
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < POSITION_COLUMNS; ++d) buf[m++] = atom->x[list[k]][d] + shift[d];
+  return m;
+}
+
+void LocalRods::unpack_positions(int n, int first, const double *buf) const
+{
+  int m = 0;
+  for (int i = first; i < first + n; ++i)
+    for (int d = 0; d < POSITION_COLUMNS; ++d) atom->x[i][d] = buf[m++];
+}
+
+void LocalRods::update(Compute *caller, int groupbit)
+{
+  comm->forward_comm(caller);
   provider = find_provider();    // fixes may have been replaced since the last call
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   double **x = atom->x;

@@ -30,8 +30,17 @@ class LocalRods : protected Pointers {
   // fix means no rods.
   LocalRods(LAMMPS *lmp, const char *error_prefix, bool required);
 
-  // Regroup the rods of the atoms in groupbit.
-  void update(int groupbit);
+  // Regroup the rods of the atoms in groupbit, from ghost positions brought up to date first: an
+  // atom that pair gran/impulse moves late in a step (its late impulse) has moved since the
+  // step's communication, its ghost copies not. `caller` is the compute that calls this on every
+  // rank; its comm_forward is POSITION_COLUMNS, and its pack_forward_comm and unpack_forward_comm
+  // are pack_positions and unpack_positions.
+  void update(class Compute *caller, int groupbit);
+  // Fails, naming the compute's style, where rods are required and no rod fix is defined.
+  void check_provider() { find_provider(); }
+  static constexpr int POSITION_COLUMNS = 3;
+  int pack_positions(int n, int *list, double *buf, int pbc_flag, int *pbc) const;
+  void unpack_positions(int n, int first, const double *buf) const;
 
   const std::vector<Rod> &rods() const { return rod_list; }
   // Index into rods() of owned atom i's rod, or -1 for an atom that is not in a rod.
