@@ -41,6 +41,7 @@ missing_packages() {
       command) command -v "$name" >/dev/null || echo "$pkg" ;;
       header)  printf '#include <%s>\n' "$name" | c++ -x c++ -E - >/dev/null 2>&1 || echo "$pkg" ;;
       python)  pkgs+=("$pkg"); modules+=("$name") ;;
+      file)    [ -e "$name" ] || echo "$pkg" ;;
       *)       die "tools/debian-packages: unknown probe '$kind' for $pkg" ;;
     esac
   done < "$AG_ROOT/tools/debian-packages"

@@ -7,6 +7,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import zipfile
 
 import pytest
 
@@ -217,3 +218,77 @@ def test_missing_package_without_apt(tmp_path):
             (bin_dir / t).symlink_to(shutil.which(t))
     msg = tools_error(tmp_path, ACTIVEGRAIN_ASSUME_MISSING="libfftw3-dev", PATH=str(bin_dir))
     assert "libfftw3-dev" in msg and "no apt-get" in msg
+
+
+# --- the environment file and the activegrain command -----------------------------------------
+
+BUILD = pathlib.Path(LMP).resolve().parent            # lmp, activegrain-env.sh and bin/ of the build in use
+ENV_SCRIPT = BUILD / "activegrain-env.sh"
+
+
+def sourced(tmp_path, commands, **env):
+    """bash with the build's environment file sourced (twice, as a user's shell may), running
+    commands; with a python3 first on PATH that is not Debian's (it only exits 1) and none of the
+    test's PYTHONPATH, LAMMPS_PLUGIN_PATH or continuum library."""
+    bin_dir = shim(tmp_path, python3="echo 'not the python3 of Debian' >&2; exit 1")
+    full = {k: v for k, v in os.environ.items()
+            if k not in ("PYTHONPATH", "LAMMPS_PLUGIN_PATH", "ACTIVEGRAIN_CONTINUUM_LIB")}
+    full.update(PATH=f"{bin_dir}:{os.environ['PATH']}", MPLBACKEND="Agg", **env)
+    script = f"set -e\nsource '{ENV_SCRIPT}'\nsource '{ENV_SCRIPT}'\n{commands}\n"
+    return run(["bash", "-c", script], cwd=tmp_path, env=full)
+
+
+def test_activegrain_command_runs_with_another_python3_first_on_path(tmp_path):
+    out = sourced(tmp_path, "! python3 -c pass 2>/dev/null\n"        # the fake one answers python3
+                            "command -v activegrain\nactivegrain --help\nactivegrain theory growth --help")
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    assert out.stdout.splitlines()[0] == str(BUILD / "bin" / "activegrain")
+    assert "snapshot" in out.stdout and "sweep" in out.stdout and "--D_rho" in out.stdout
+    assert out.stderr == ""
+
+
+def test_activegrain_command_needs_no_environment_file(tmp_path):
+    """bin/activegrain alone: its shebang is Debian's python3 (where there is one), it puts this
+    source tree's python/ on the path and names the build's continuum solver."""
+    wrapper = BUILD / "bin" / "activegrain"
+    text = wrapper.read_text()
+    if os.path.exists("/usr/bin/python3"):
+        assert text.splitlines()[0] == "#!/usr/bin/python3"
+    assert f'sys.path.insert(0, "{ROOT / "python"}")' in text
+    if (BUILD / "lib" / "libactivegrain_continuum.so").exists():
+        assert f'"ACTIVEGRAIN_CONTINUUM_LIB", "{BUILD / "lib" / "libactivegrain_continuum.so"}"' in text
+    bin_dir = shim(tmp_path, python3="exit 1")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    out = run([str(wrapper), "polar", "--help"], cwd=tmp_path, env=dict(env, PATH=f"{bin_dir}:{env['PATH']}"))
+    assert out.returncode == 0 and "--length-unit" in out.stdout, out.stderr
+
+
+def test_lmp_after_the_environment_file_loads_the_plugin_once(tmp_path):
+    """The environment file and the lmp wrapper both name the plugin folder; LAMMPS loads it once."""
+    (tmp_path / "in.list").write_text("plugin list\n")
+    out = sourced(tmp_path, 'echo "$LAMMPS_PLUGIN_PATH"\nlmp -in in.list -log none\n'
+                            f"{MPIRUN} -np 2 lmp -in in.list -log none")
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    assert out.stdout.splitlines()[0] == str(BUILD / "plugins")          # listed once, sourced twice
+    assert out.stdout.count("Loaded 1 plugins from") == 2, out.stdout     # once per run
+    for style, name in plugin_styles():
+        assert len(re.findall(rf"^ *\d+: {style} style plugin {re.escape(name)}$", out.stdout, re.M)) == 2
+
+
+def test_pyproject_declares_the_package_and_the_command(tmp_path):
+    """python/pyproject.toml builds offline with setuptools into a wheel of the whole package whose
+    console script activegrain calls activegrain.__main__:main, the function bin/activegrain calls."""
+    src = tmp_path / "src"
+    shutil.copytree(ROOT / "python", src, ignore=shutil.ignore_patterns("__pycache__", "build", "*.egg-info"))
+    out = run(["/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable, "-c",
+               "import sys; from setuptools import build_meta; print(build_meta.build_wheel(sys.argv[1]))",
+               str(tmp_path / "dist")], cwd=src)
+    assert out.returncode == 0, out.stderr[-3000:]
+    with zipfile.ZipFile(tmp_path / "dist" / out.stdout.splitlines()[-1]) as wheel:
+        names = set(wheel.namelist())
+        info = next(n.split("/")[0] for n in names if n.endswith(".dist-info/METADATA"))
+        scripts = wheel.read(f"{info}/entry_points.txt").decode()
+    package = {str(p.relative_to(ROOT / "python")) for p in (ROOT / "python" / "activegrain").rglob("*.py")}
+    assert package <= names, package - names
+    assert re.search(r"^\[console_scripts\]\nactivegrain = activegrain\.__main__:main$", scripts, re.M), scripts
+    assert "from activegrain.__main__ import main" in (BUILD / "bin" / "activegrain").read_text()
