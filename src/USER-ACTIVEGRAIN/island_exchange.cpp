@@ -95,39 +95,36 @@ ContactSolver::Result IslandExchange::solve(ContactSolver &solver, const ActiveG
 {
   if (!any_crossing) return ContactSolver::Result();
   const int me = comm->me, nprocs = comm->nprocs;
-  const int bytes = static_cast<int>(crossing.size() * sizeof(CrossingContact));
-  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
-  if (me == 0) {
-    // MPI counts bytes in an int: millions of contacts in islands across cuts are beyond this solve.
-    if (std::accumulate(counts.begin(), counts.end(), 0LL) > std::numeric_limits<int>::max())
-      error->one(FLERR, "Pair gran/impulse: islands across sub-domains hold more than {} contacts, too many to "
-                 "solve whole on one rank", std::numeric_limits<int>::max() / sizeof(CrossingContact));
-    std::exclusive_scan(counts.begin(), counts.end(), displacements.begin(), 0);
-    gathered.resize((displacements.back() + counts.back()) / sizeof(CrossingContact));
+  const int mine = static_cast<int>(crossing.size());
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  std::exclusive_scan(counts.begin(), counts.end(), displacements.begin(), 0);
+  const long long total = std::accumulate(counts.begin(), counts.end(), 0LL);
+  // MPI counts bytes in an int: millions of contacts in islands across cuts are beyond this solve.
+  if (total > static_cast<long long>(std::numeric_limits<int>::max() / sizeof(CrossingContact)))
+    error->all(FLERR, "Pair gran/impulse: islands across sub-domains hold {} contacts, too many to exchange whole",
+               total);
+  gathered.resize(total);
+  for (auto *v : {&send_bytes, &byte_offsets, &recv_bytes, &recv_offsets}) v->resize(nprocs);
+  for (int r = 0; r < nprocs; r++) {
+    send_bytes[r] = counts[r] * static_cast<int>(sizeof(CrossingContact));
+    byte_offsets[r] = displacements[r] * static_cast<int>(sizeof(CrossingContact));
   }
-  MPI_Gatherv(crossing.data(), bytes, MPI_BYTE, gathered.data(), counts.data(), displacements.data(), MPI_BYTE, 0,
-              world);
-  ContactSolver::Result result;
-  if (me == 0) {
-    result = solve_gathered(settings, order);
-    for (int r = 0; r < nprocs; r++) {
-      counts[r] = counts[r] / sizeof(CrossingContact) * sizeof(Solution);
-      displacements[r] = displacements[r] / sizeof(CrossingContact) * sizeof(Solution);
-    }
-  }
-  solutions.resize(crossing.size());
-  MPI_Scatterv(gathered_solutions.data(), counts.data(), displacements.data(), MPI_BYTE, solutions.data(),
-               static_cast<int>(solutions.size() * sizeof(Solution)), MPI_BYTE, 0, world);
-  for (std::size_t k = 0; k < crossing.size(); k++)
-    solver.set_solution(crossing_index[k], solutions[k].impulse, solutions[k].late, solutions[k].velocity_after);
+  MPI_Allgatherv(crossing.data(), send_bytes[me], MPI_BYTE, gathered.data(), send_bytes.data(), byte_offsets.data(),
+                 MPI_BYTE, world);
+  const ContactSolver::Result result = solve_own_islands(settings, order);
+  return_solutions(solver);
   return result;
 }
 
-// Rank 0: the gathered contacts in their global order, each movable body once (by its key, from
-// whichever rank sent it: its state is the same on all), each wall's body its own.
-ContactSolver::Result IslandExchange::solve_gathered(const ActiveGrain::SolverSettings &settings, ContactOrder order)
+// Every rank holds every crossing contact; each island goes to one rank, by the position of its
+// first contact in the global order (the same on all ranks), so that the islands' work is shared.
+// That rank solves it: its contacts in their global order, each movable body once (by its key,
+// from whichever rank sent it: its state is the same on all), each wall's body its own.
+ContactSolver::Result IslandExchange::solve_own_islands(const ActiveGrain::SolverSettings &settings,
+                                                        ContactOrder order)
 {
-  gather_order.resize(gathered.size());
+  const int total = static_cast<int>(gathered.size());
+  gather_order.resize(total);
   std::iota(gather_order.begin(), gather_order.end(), 0);
   auto order_key = [&](int k) {
     const CrossingContact &c = gathered[k];
@@ -137,32 +134,91 @@ ContactSolver::Result IslandExchange::solve_gathered(const ActiveGrain::SolverSe
   };
   std::sort(gather_order.begin(), gather_order.end(),
             [&](int a, int b) { return ContactAssembly::precedes(order_key(a), order_key(b), order); });
+  // The islands: movable bodies (by key) joined by contacts.
+  merged.clear();
+  root.clear();
+  auto node = [&](std::uint64_t key) {
+    return merged.find_or_insert(key, [&] {
+      root.push_back(static_cast<int>(root.size()));
+      return static_cast<int>(root.size()) - 1;
+    });
+  };
+  auto find = [&](int b) {
+    while (root[b] != b) b = root[b] = root[root[b]];
+    return b;
+  };
+  contact_node.resize(total);
+  for (int k = 0; k < total; k++) {
+    const CrossingContact &c = gathered[k];
+    const int n1 = c.key1 ? node(c.key1) : -1, n2 = c.key2 ? node(c.key2) : -1;
+    if (n1 >= 0 && n2 >= 0) root[find(n1)] = find(n2);
+    contact_node[k] = n1 >= 0 ? n1 : n2;
+  }
+  first_position.assign(root.size(), -1);
+  owner.resize(total);
+  for (int p = 0; p < total; p++) {
+    const int k = gather_order[p], island = find(contact_node[k]);
+    if (first_position[island] < 0) first_position[island] = p;
+    owner[k] = first_position[island] % comm->nprocs;
+  }
   gathered_solver.clear();
   merged.clear();
   auto body = [&](std::uint64_t key, const ActiveGrain::RigidBodyState &state) {
     if (key == 0) return gathered_solver.add_body(state);
     return merged.find_or_insert(key, [&] { return gathered_solver.add_body(state); });
   };
+  own_contacts.clear();
   for (int k : gather_order) {
+    if (owner[k] != comm->me) continue;
     const CrossingContact &packed = gathered[k];
     const ActiveGrain::SolverContact &c = packed.contact;
     const int b1 = body(packed.key1, packed.body1), b2 = body(packed.key2, packed.body2);
     const int added = gathered_solver.add_contact_arms(b1, b2, c.r1, c.r2, c.n, c.material, c.min_separation,
                                                        c.gain, c.time);
     gathered_solver.set_key(added, c.key);
+    own_contacts.push_back(k);
   }
   const ContactSolver::Result result = gathered_solver.solve(settings);
-  gathered_solutions.resize(gathered.size());
-  for (std::size_t added = 0; added < gathered.size(); added++) {
+  gathered_solutions.resize(total);
+  for (std::size_t added = 0; added < own_contacts.size(); added++) {
     const ContactSolver::Contact &c = gathered_solver.contact(static_cast<int>(added));
-    gathered_solutions[gather_order[added]] = {c.impulse, c.late, c.velocity_after};
+    gathered_solutions[own_contacts[added]] = {c.impulse, c.late, c.velocity_after};
   }
   return result;
+}
+
+// Each rank's solutions go to the ranks whose contacts they are (both sides know who solved what),
+// in the order of those ranks' crossing contacts.
+void IslandExchange::return_solutions(ContactSolver &solver)
+{
+  const int me = comm->me, nprocs = comm->nprocs;
+  outgoing.clear();
+  for (int r = 0; r < nprocs; r++) {
+    send_bytes[r] = recv_bytes[r] = 0;
+    for (int k = displacements[r]; k < displacements[r] + counts[r]; k++)
+      if (owner[k] == me) {
+        outgoing.push_back(gathered_solutions[k]);
+        send_bytes[r] += sizeof(Solution);
+      }
+  }
+  for (int k = displacements[me]; k < displacements[me] + counts[me]; k++) recv_bytes[owner[k]] += sizeof(Solution);
+  std::exclusive_scan(send_bytes.begin(), send_bytes.end(), byte_offsets.begin(), 0);
+  std::exclusive_scan(recv_bytes.begin(), recv_bytes.end(), recv_offsets.begin(), 0);
+  incoming.resize(crossing.size());
+  MPI_Alltoallv(outgoing.data(), send_bytes.data(), byte_offsets.data(), MPI_BYTE, incoming.data(), recv_bytes.data(),
+                recv_offsets.data(), MPI_BYTE, world);
+  // From each solving rank in turn, in this rank's order.
+  for (int r = 0, received = 0; r < nprocs; r++)
+    for (int k = 0; k < static_cast<int>(crossing.size()); k++) {
+      if (owner[displacements[me] + k] != r) continue;
+      const Solution &solution = incoming[received++];
+      solver.set_solution(crossing_index[k], solution.impulse, solution.late, solution.velocity_after);
+    }
 }
 
 double IslandExchange::memory_usage() const
 {
   return (double) (crossing.capacity() + gathered.capacity()) * sizeof(CrossingContact) +
-      (double) (solutions.capacity() + gathered_solutions.capacity()) * sizeof(Solution) +
+      (double) (incoming.capacity() + outgoing.capacity() + gathered_solutions.capacity()) * sizeof(Solution) +
       (double) (away_keys.capacity() + all_away_keys.capacity()) * sizeof(std::uint64_t);
 }

@@ -3,8 +3,8 @@
 // on several: a bead at a sub-domain boundary touches beads found from both sides. Each rank
 // solving its part alone would make the answer depend on the decomposition. So in each step
 // every rank names the bodies of its contacts that another rank decides; the islands that hold
-// such a body, on any rank, are gathered to rank 0 as data (bodies by their keys, contacts with
-// their order keys), solved there as one problem in the contacts' global order, and their results
+// such a body, on any rank, are sent to every rank as data (bodies by their keys, contacts with
+// their order keys); each is solved whole by one rank, in the contacts' global order, and the results
 // go back to the ranks that found the contacts. An island that no other rank touches is solved
 // where it is found. Either way it is the problem one rank would solve. On one rank nothing is
 // exchanged.
@@ -28,8 +28,8 @@ class IslandExchange : protected Pointers {
 
   // Marks the solver's contacts whose islands cross ranks as solved elsewhere and packs them.
   void split(ActiveGrain::ContactSolver &solver, const SolverBodies &bodies, const ContactAssembly &assembly);
-  // Solves the crossing islands on rank 0 and gives each rank's solver its contacts' results.
-  // Returns that solve's result on rank 0 (an empty one on the others).
+  // Solves the crossing islands, each on one rank, and gives each rank's solver its contacts'
+  // results. Returns the result of the islands solved on this rank.
   ActiveGrain::ContactSolver::Result solve(ActiveGrain::ContactSolver &solver,
                                            const ActiveGrain::SolverSettings &settings, ContactOrder order);
   // Contacts of this rank solved in a gathered island, last step.
@@ -53,22 +53,25 @@ class IslandExchange : protected Pointers {
   bool share_away_bodies(const ActiveGrain::ContactSolver &solver, const SolverBodies &bodies);
   void mark_crossing_islands(ActiveGrain::ContactSolver &solver, const SolverBodies &bodies,
                              const ContactAssembly &assembly);
-  ActiveGrain::ContactSolver::Result solve_gathered(const ActiveGrain::SolverSettings &settings, ContactOrder order);
+  ActiveGrain::ContactSolver::Result solve_own_islands(const ActiveGrain::SolverSettings &settings,
+                                                      ContactOrder order);
+  void return_solutions(ActiveGrain::ContactSolver &solver);
 
   bool any_crossing = false;                // some rank has a contact with a body decided elsewhere
   ActiveGrain::KeyIndex shared;             // keys of bodies whose contacts are found on several ranks
   std::vector<std::uint64_t> away_keys, all_away_keys;
-  std::vector<int> root;                    // per solver body (union-find)
+  std::vector<int> root;                    // union-find: per solver body, then per island node
   std::vector<char> crossing_root;          // per root body
   std::vector<CrossingContact> crossing;    // this rank's, in its solver's order
   std::vector<int> crossing_index;          // their indices in the solver
-  std::vector<Solution> solutions;          // for them
-  // Rank 0: everything gathered, its solver, and where each of its contacts came from.
+  // Every rank's crossing contacts (rank by rank, each in its order), counts and offsets in
+  // contacts and in bytes; their global order, islands and solving ranks.
   std::vector<CrossingContact> gathered;
-  std::vector<Solution> gathered_solutions;
-  std::vector<int> counts, displacements, gather_order;
-  ActiveGrain::ContactSolver gathered_solver;
-  ActiveGrain::KeyIndex merged;             // body key -> gathered solver body
+  std::vector<int> counts, displacements, send_bytes, byte_offsets, recv_bytes, recv_offsets;
+  std::vector<int> gather_order, contact_node, first_position, owner, own_contacts;
+  ActiveGrain::ContactSolver gathered_solver;    // this rank's islands of them
+  ActiveGrain::KeyIndex merged;                  // body key -> island node, then solver body
+  std::vector<Solution> gathered_solutions, outgoing, incoming;
 };
 
 }    // namespace LAMMPS_NS
