@@ -121,6 +121,7 @@ void PairGranImpulse::init_style()
   request_neighbors();
   find_type_radii();
   check_deck();
+  warn_silent_inputs(lmp, STYLE, instance_me, style_settings.slop);
   assembly.init(style_settings.beta, style_settings.slop, style_settings.order, restitution, friction, walls);
 }
 
@@ -440,7 +441,6 @@ void *PairGranImpulse::extract(const char *name, int &dim)
   if (strcmp(name, "mu") == 0) return (void *) friction;
   return nullptr;
 }
-
 
 double PairGranImpulse::memory_usage()
 {

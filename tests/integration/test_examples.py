@@ -176,7 +176,8 @@ THERMO = re.compile(r"^\s+(\d+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+(\d+
 
 
 def channel_thermo(out, ranks, *extra):
-    """step -> (time, polar order, nematic order, rods, temperature) of a channel-small run to 0.06 s."""
+    """step -> (time, polar order, nematic order, rods, the beads' <v^2> (their temperature)) of a
+    channel-small run to 0.06 s (in.channel's thermo: Step Time P nematic rods beads_v2(mm2/s2) CPU ...)."""
     done = subprocess.run([*mpi_prefix(ranks), LMP, "-in", "in.channel-small", "-var", "out", str(out),
                            "-var", "time", "0.06", "-var", "dump", "0.005", "-log", "none", *extra],
                           cwd=EXAMPLES / "channel", capture_output=True, text=True, timeout=120)

@@ -25,7 +25,8 @@ STATE_STEP = 500      # channel.restart.1 of a run dumping every 0.005 s (restar
 END = 0.06
 MAX_STATE_BYTES = 5_000_000
 
-# step time c_order c_order[5] c_order[6] c_tsphere cpu, then the soak columns (in.channel's thermo)
+# Step Time P nematic rods beads_v2(mm2/s2) CPU, then the soak columns (in.channel's thermo: polar and
+# nematic order, rods, the beads' mean squared velocity)
 THERMO = re.compile(r"^\s+(\d+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+([\d.e+-]+)\s+(\d+)\s+([\d.e+-]+)\s+[\d.e+-]+(?:[ \t]+[\d.e+-]+)*[ \t]*$", re.M)
 WROTE = re.compile(r"^ActiveGrain state: wrote (\S+) \(time (\S+) s, step (\d+), (\d+) beads, (\d+) rods\)$", re.M)
 CONTINUING = re.compile(r"^ActiveGrain state: continuing from (\S+) at time (\S+) s, step (\d+)$", re.M)
@@ -44,7 +45,7 @@ def channel(out, ranks, *extra):
 
 
 def thermo(stdout):
-    """step -> (time, polar order, nematic order, rods, temperature)"""
+    """step -> (time, polar order, nematic order, rods, the beads' <v^2> (their temperature))"""
     return {int(m.group(1)): tuple(float(v) for v in m.groups()[1:]) for m in THERMO.finditer(stdout)}
 
 

@@ -1,14 +1,17 @@
 // The mistakes a newcomer makes, each a base deck that runs plus the lines that make it wrong,
 // checked for its message: forgotten units si (and the reverse), rod atoms integrated as free
 // particles, a rod whose atoms carry two molecule IDs, plates counted twice, gravity with no
-// plate, a cutoff too small for a rod, a rod longer than its periodic box, flat vibrated plates.
+// plate, a cutoff too small for a rod, a rod longer than its periodic box, flat vibrated plates,
+// atoms that no fix integrates, a slop of a sizeable part of a diameter.
 #include "lammps_fixture.h"
 #include "rod_deck.h"
 
 #include "error.h"
 
 #include <cstdio>
+#include <fstream>
 #include <regex>
+#include <sstream>
 #include <string>
 
 using ::testing::HasSubstr;
@@ -43,6 +46,19 @@ class Misuse : public LammpsTest {
   std::string file(const std::string &name)
   {
     return ::testing::UnitTest::GetInstance()->current_test_info()->name() + std::string("-") + name;
+  }
+  // What the commands print to the log (warnings included), from a log file of their own.
+  std::string logged(const std::string &text)
+  {
+    const std::string log = file("log.txt");
+    command("log " + log);
+    command(text);
+    command("log none");
+    std::ifstream in(log);
+    std::stringstream read;
+    read << in.rdbuf();
+    std::remove(log.c_str());
+    return read.str();
   }
 };
 
@@ -162,4 +178,53 @@ TEST_F(Misuse, TheCutoffQuotedOnOneRankIsTheRule)
   const std::string message = error_of("run 1 post no");
   EXPECT_THAT(message, HasSubstr("Fix rigid/rod: rod extent"));
   EXPECT_THAT(message, HasSubstr("(valid on any number of ranks)"));
+}
+
+TEST_F(Misuse, AtomsThatNoFixIntegratesWarnOnce)
+{
+  // Two beads, one integrated by fix nve/sphere, the other too, or frozen (fix freeze): no warning.
+  command(bead_deck("units si") + GRAVITY + PLATES +
+          "create_atoms 2 single 0.007 0.007 0.001\nset atom 2 diameter 0.001\nset atom 2 density 2700\n"
+          "group first id 1\ngroup second id 2");
+  const int before = warnings();
+  EXPECT_EQ(error_of("run 5 post no"), "");
+  command("unfix nve\nfix nve second nve/sphere\nfix frozen first freeze");
+  EXPECT_EQ(error_of("run 5 post no"), "");
+  EXPECT_EQ(warnings(), before);
+  // The first's integrator deleted: it would sit still while contacts push it. One warning, not
+  // one a run; run 0 moves nothing and says nothing.
+  command("unfix frozen\nrun 0 post no");
+  EXPECT_EQ(warnings(), before);
+  const std::string log = logged("run 5 post no");
+  EXPECT_EQ(warnings(), before + 1);
+  EXPECT_THAT(log, HasSubstr("WARNING: Pair gran/impulse: 1 of 2 atoms (types 1) are in the group of no "
+                             "time-integrating fix (fix nve/sphere, fix rigid/rod, ...) nor of fix freeze: contacts "
+                             "push them but they never move"));
+  command("run 5 post no");
+  EXPECT_EQ(warnings(), before + 1);
+  // Rod atoms in fix rigid/rod's group are integrated (as bodies).
+  command("clear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE);
+  command(rod_deck() + "fix rods all rigid/rod molecule mol rod\ntimestep 1e-5\nthermo_style custom step");
+  const int rods_before = warnings();
+  EXPECT_EQ(error_of("run 5 post no"), "");
+  EXPECT_EQ(warnings(), rods_before);
+  command("unfix rods\ngroup none empty\nfix idle none nve/sphere");
+  EXPECT_THAT(logged("run 5 post no"), HasSubstr("Pair gran/impulse: 9 of 9 atoms (types 1 2 3) are in the group of "
+                                                 "no time-integrating fix"));
+}
+
+TEST_F(Misuse, ASlopAboveATenthOfTheSmallestDiameterWarnsOnce)
+{
+  // 1 mm beads: slop 0.05 mm is fine, 0.15 mm is more than a tenth of a diameter.
+  command(bead_deck("units si") + GRAVITY + PLATES + "pair_style gran/impulse slop 5e-5\npair_coeff * * 0.3 0.05");
+  const int before = warnings();
+  EXPECT_EQ(error_of("run 5 post no"), "");
+  EXPECT_EQ(warnings(), before);
+  command("pair_style gran/impulse slop 1.5e-4\npair_coeff * * 0.3 0.05");
+  EXPECT_THAT(logged("run 5 post no"),
+              HasSubstr("WARNING: Pair gran/impulse: slop 0.00015 is more than a tenth of the smallest particle "
+                        "diameter 0.001: overlaps up to slop are never pushed apart"));
+  EXPECT_EQ(warnings(), before + 1);
+  command("run 5 post no");
+  EXPECT_EQ(warnings(), before + 1);
 }
