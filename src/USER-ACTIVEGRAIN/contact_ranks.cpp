@@ -31,10 +31,12 @@ void ContactRanks::assign(const std::vector<RigidBodyProvider *> &providers)
   solved_here.assign(nall, 0);
   std::fill(solved_here.begin(), solved_here.begin() + nlocal, 1);
   // A bead is decided here if owned here; a ghost image of an owned bead too (without an atom map
-  // it counts as decided elsewhere: its island is then gathered, which is only slower).
+  // it counts as decided elsewhere: its island is then exchanged, which is only slower). On one
+  // rank every body is.
   const bool mapped = atom->map_style != Atom::MAP_NONE;
-  decided_here.resize(nall);
-  for (int i = 0; i < nall; i++) decided_here[i] = i < nlocal || (mapped && atom->map(tag[i]) < nlocal);
+  decided_here.assign(nall, 1);
+  if (comm->nprocs > 1)
+    for (int i = nlocal; i < nall; i++) decided_here[i] = mapped && atom->map(tag[i]) < nlocal;
   if (!rigid_bodies) return;
 
   LowestTagRule solving;

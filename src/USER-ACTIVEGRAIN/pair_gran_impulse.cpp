@@ -121,7 +121,7 @@ void PairGranImpulse::init_style()
   request_neighbors();
   find_type_radii();
   check_deck();
-  warn_silent_inputs(lmp, STYLE, instance_me, style_settings.slop);
+  warn_silent_inputs(lmp, STYLE, warned_inputs, style_settings.slop);
   assembly.init(style_settings.beta, style_settings.slop, style_settings.order, restitution, friction, walls);
 }
 

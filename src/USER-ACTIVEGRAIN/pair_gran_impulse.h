@@ -22,6 +22,8 @@ PairStyle(gran/impulse,PairGranImpulse);
 #include "solve_diagnostics.h"
 #include "solver_bodies.h"
 
+#include <set>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -77,6 +79,7 @@ class PairGranImpulse : public Pair {
   void refuse_integrated_rod_atoms();
   void check_deck();
   bool warned_no_walls = false, warned_units = false;
+  std::set<std::string> warned_inputs;    // warn_silent_inputs()'s warnings given
   void setup_step();
   void assemble();
   void solve();

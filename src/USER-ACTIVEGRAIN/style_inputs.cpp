@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cfloat>
 #include <set>
-#include <utility>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -53,19 +52,10 @@ double LAMMPS_NS::largest_radius(LAMMPS *lmp, int groupbit)
   return all;
 }
 
-// True the first time (pair style instance, key) is asked for in this process: a warning's
-// "once". (Pair::instance_me counts every pair style made in the process, so an instance made
-// after `clear`, or in another LAMMPS, is another key.)
-static bool first_time(int instance, const std::string &key)
-{
-  static std::set<std::pair<int, std::string>> given;
-  return given.emplace(instance, key).second;
-}
-
 // Atoms in the group of no time-integrating fix (fix nve/sphere, fix rigid/rod for its rods'
 // atoms, ...) nor of fix freeze (bodies of infinite mass for the contacts): the solve gives them
 // velocity changes that nothing applies, so they sit still while contacts push them.
-static void warn_unintegrated_atoms(LAMMPS *lmp, const std::string &style, int instance)
+static void warn_unintegrated_atoms(LAMMPS *lmp, const std::string &style, std::set<std::string> &warned)
 {
   Atom *atom = lmp->atom;
   int integrated = 0;
@@ -80,7 +70,7 @@ static void warn_unintegrated_atoms(LAMMPS *lmp, const std::string &style, int i
     }
   MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, lmp->world);
   MPI_Allreduce(local_types.data(), types.data(), atom->ntypes + 1, MPI_INT, MPI_MAX, lmp->world);
-  if (all == 0 || lmp->comm->me != 0 || !first_time(instance, "unintegrated")) return;
+  if (all == 0 || lmp->comm->me != 0 || !warned.insert("unintegrated").second) return;
   std::string listed;
   for (int t = 1; t <= atom->ntypes; t++)
     if (types[t]) listed += (listed.empty() ? "" : " ") + std::to_string(t);
@@ -92,7 +82,7 @@ static void warn_unintegrated_atoms(LAMMPS *lmp, const std::string &style, int i
 
 // Overlaps up to slop are not pushed apart: with slop a sizeable part of a diameter, particles
 // sink that deep into each other and into the plates.
-static void warn_large_slop(LAMMPS *lmp, const std::string &style, int instance, double slop)
+static void warn_large_slop(LAMMPS *lmp, const std::string &style, std::set<std::string> &warned, double slop)
 {
   if (slop <= 0.0) return;
   Atom *atom = lmp->atom;
@@ -101,17 +91,18 @@ static void warn_large_slop(LAMMPS *lmp, const std::string &style, int instance,
     if (atom->radius[i] > 0.0) mine = std::min(mine, 2.0 * atom->radius[i]);
   MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE, MPI_MIN, lmp->world);
   if (smallest == DBL_MAX || slop <= LARGEST_SLOP_DIAMETERS * smallest) return;
-  if (lmp->comm->me != 0 || !first_time(instance, fmt::format("slop {}", slop))) return;
+  if (lmp->comm->me != 0 || !warned.insert(fmt::format("slop {}", slop)).second) return;
   lmp->error->warning(FLERR, "{}: slop {} is more than a tenth of the smallest particle diameter {:.6g}: overlaps "
                       "up to slop are never pushed apart, so particles sink that deep into each other and into "
                       "the walls; take slop a small fraction of a diameter (0.01 d)", style, slop, smallest);
 }
 
-void LAMMPS_NS::warn_silent_inputs(LAMMPS *lmp, const std::string &style, int instance, double slop)
+void LAMMPS_NS::warn_silent_inputs(LAMMPS *lmp, const std::string &style, std::set<std::string> &warned,
+                                   double slop)
 {
   // Only before a run: other commands (delete_atoms overlap, write_data) init the styles too,
   // perhaps before the deck has defined its integrators.
   if (lmp->update->whichflag != 1) return;
-  if (lmp->update->nsteps > 0) warn_unintegrated_atoms(lmp, style, instance);    // (run 0 moves nothing)
-  warn_large_slop(lmp, style, instance, slop);
+  if (lmp->update->nsteps > 0) warn_unintegrated_atoms(lmp, style, warned);    // (run 0 moves nothing)
+  warn_large_slop(lmp, style, warned, slop);
 }

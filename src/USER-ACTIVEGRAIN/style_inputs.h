@@ -3,6 +3,7 @@
 
 #include "pointers.h"
 
+#include <set>
 #include <string>
 
 namespace LAMMPS_NS {
@@ -20,10 +21,10 @@ double inserted_radius(LAMMPS *lmp, int type, int groupbit = 0);
 double largest_radius(LAMMPS *lmp, int groupbit);
 
 // Inputs that run without a word but do not do what they seem, checked by pair gran/impulse's
-// init before a run (all ranks call it): a WARNING from rank 0, each once per pair style instance
-// (`instance`, Pair::instance_me) and value, when atoms are in the group of no time-integrating
+// init before a run (all ranks call it): a WARNING from rank 0, each once per key it adds to
+// `warned` (the pair style's), when atoms are in the group of no time-integrating
 // fix nor of fix freeze (contacts push them, they never move; not before run 0), or when slop is
 // more than a tenth of the smallest particle diameter (particles sink that deep into each other).
-void warn_silent_inputs(LAMMPS *lmp, const std::string &style, int instance, double slop);
+void warn_silent_inputs(LAMMPS *lmp, const std::string &style, std::set<std::string> &warned, double slop);
 
 }    // namespace LAMMPS_NS
