@@ -1,19 +1,23 @@
-"""Command line: ``python3 -m activegrain {profile,map,polar,phase,condensate,motility,snapshot,kymograph,movie,convert,theory,continuum,sweep} ...``.
+"""Command line: ``activegrain COMMAND ...``, COMMAND one of profile, map, polar, phase,
+condensate, motility, snapshot, kymograph, movie, convert, theory, continuum, sweep.
 
 Every dump command takes the cell geometry (``--geometry``; auto reads the box flags:
 pp pp = periodic box, pp ff = channel, ff ff = rectangle; an annulus needs ``--r-out``),
 ``--length-unit`` (1e-3 to work in bead diameters d from the example decks' dumps, in metres)
 and ``--timestep`` (the deck's time step in seconds, 1e-4 in the example decks; without it,
-times are MD steps; ``phase``, whose rates are per second, needs it). Each command's ``--help`` gives its options, their defaults and examples.
+times are MD steps; ``phase``, whose rates are per second, needs it). Each command's
+``--help`` gives its options, their defaults and examples.
 
 A bad argument or input prints one line, ``ERROR: activegrain COMMAND: ...`` (exit status 2 for
 a command line that does not parse, else 1); a dump that ends within a frame (a killed
-run) is read to its last whole frame with a line ``WARNING: activegrain COMMAND: ...``.
+run) is read to its last whole frame with a line ``WARNING: activegrain COMMAND: ...`` (both
+on stderr).
 """
 import argparse
 import json
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -354,16 +358,33 @@ class _Parser(argparse.ArgumentParser):
     """argparse with one line for a bad command line, not the usage block."""
 
     def error(self, message):
-        name = self.prog.replace("python3 -m ", "")
-        self.exit(2, f"ERROR: {name}: {message} (see {self.prog} --help)\n")
+        self.exit(2, f"ERROR: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
+# reST roles in docstrings: :func:`name`, :class:`~package.module.Name`, :py:meth:`title <target>`
+_REST_ROLE = re.compile(r":(?:[a-z]+:)+`([^`]*)`")
+
+
+def _plain_text(text):
+    """reST markup of a docstring or help string as the terminal shows it: ``code`` and `text`
+    as their text, a role such as :func:`name` as its name (``~a.b.c`` as c, ``title <target>``
+    as title)."""
+    def role(match):
+        target = match.group(1).split(" <")[0]
+        return target.rsplit(".", 1)[-1] if target.startswith("~") else target
+    return _REST_ROLE.sub(role, text).replace("``", "").replace("`", "")
 
 
 class _Formatter(argparse.RawDescriptionHelpFormatter):
-    """Descriptions and examples as written; each option's default after its help, where it has
+    """Descriptions and examples as written, in plain text (no reST markup: the description of the
+    command line is this module's docstring); each option's default after its help, where it has
     one (not for flags, and not for options whose absence the help explains)."""
 
+    def _fill_text(self, text, width, indent):
+        return super()._fill_text(_plain_text(text), width, indent)
+
     def _get_help_string(self, action):
-        text = action.help or ""
+        text = _plain_text(action.help or "")
         if ("%(default)" not in text and action.option_strings and action.default is not None
                 and action.default is not False and action.default is not argparse.SUPPRESS
                 and not isinstance(action, argparse._HelpAction)):
@@ -379,15 +400,15 @@ def _command(sub, name, summary, description, examples, dump=True, one_frame=Fal
     """A subcommand with its one-line summary (in the command list), description, examples and,
     for dump commands, the common dump options."""
     p = sub.add_parser(name, help=summary, description=textwrap.fill(description, 90), formatter_class=_Formatter,
-                       epilog="examples:\n" + "\n".join("  python3 -m activegrain " + e for e in examples))
+                       epilog="examples:\n" + "\n".join("  activegrain " + e for e in examples))
     if dump:
         _add_dump_args(p, one_frame)
     return p
 
 
 def build_parser():
-    ap = _Parser(prog="python3 -m activegrain", description=__doc__, formatter_class=_Formatter,
-                 epilog="python3 -m activegrain COMMAND --help: the command's options, defaults and examples.")
+    ap = _Parser(prog="activegrain", description=__doc__, formatter_class=_Formatter,
+                 epilog="activegrain COMMAND --help: the command's options, defaults and examples.")
     sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
     ex = _DUMP_EXAMPLE_ARGS
 

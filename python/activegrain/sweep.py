@@ -1,6 +1,6 @@
 """Phase diagrams from runs of an example deck over a grid of (phi_b, phi_r) and seeds.
 
-``python3 -m activegrain sweep DECK --phi-b 0.6 0.7 --phi-r 0.03 --seeds 1 2 --time 20 --out DIR``
+``activegrain sweep DECK --phi-b 0.6 0.7 --phi-r 0.03 --seeds 1 2 --time 20 --out DIR``
 runs ``DECK`` (from its own folder, as the example decks expect) once per grid point and seed,
 with ``-var phi_b``, ``-var phi_r``, ``-var seed``, ``-var time`` and ``-var out`` set and any
 fixed ``--var NAME VALUE`` added, under ``mpirun -np RANKS`` (or directly for one rank). Each run

@@ -1,7 +1,12 @@
+import pathlib
+import sys
+
 import matplotlib
 import pytest
 
 matplotlib.use("Agg")
+# the checkout's package, as ctest's PYTHONPATH gives it, also under a plain pytest
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
 
 
 @pytest.fixture(scope="session")

@@ -20,7 +20,7 @@ def test_each_subcommand_has_description_defaults_and_examples(name):
     sub = commands[name]
     assert sub.description and len(sub.description) > 60
     text = sub.format_help()
-    assert "examples:\n  python3 -m activegrain " + name in text
+    assert "examples:\n  activegrain " + name in text
     for action in sub._actions:
         if isinstance(action, argparse._HelpAction):
             continue
@@ -29,9 +29,33 @@ def test_each_subcommand_has_description_defaults_and_examples(name):
             assert f"(default: {action.default})" in " ".join(text.split()), f"{name}: {action.dest}"
     examples = text.split("examples:\n")[1].splitlines()
     for line in examples:
-        argv = shlex.split(line.strip())[3:]
+        argv = shlex.split(line.strip())[1:]
         args = parser.parse_args(argv[:argv.index(">")] if ">" in argv else argv)   # no redirection
         assert args.command == name
+
+
+def test_the_command_calls_itself_activegrain():
+    parser, commands = subcommands()
+    assert parser.prog == "activegrain" and parser.format_usage().startswith("usage: activegrain ")
+    assert all(sub.prog == f"activegrain {name}" for name, sub in commands.items())
+
+
+# reST markup that docstrings and help strings may carry, which a terminal would show as is
+REST_MARKUP = ("``", ":func:", ":class:", ":meth:", ":mod:", ":data:", ":attr:", ":doc:", ":ref:", "`")
+
+
+@pytest.mark.parametrize("name", [None] + sorted(subcommands()[1]))
+def test_help_is_plain_text_without_rest_markup(name):
+    parser, commands = subcommands()
+    text = (parser if name is None else commands[name]).format_help()
+    assert [m for m in REST_MARKUP if m in text] == [], text
+
+
+def test_rest_markup_becomes_its_text():
+    from activegrain.cli import _plain_text
+    assert _plain_text("``--window`` (:func:`activegrain.analysis.classify_frames`, :class:`~a.b.Frame`, "
+                       ":doc:`the page <continuum>`, `x`)") == (
+        "--window (activegrain.analysis.classify_frames, Frame, the page, x)")
 
 
 def test_dump_commands_take_the_time_step_in_seconds():
