@@ -47,7 +47,6 @@ def main(outdir):
     pr = A.area_fraction_profile(fr, g, "x", 40, "rods")
     fig = plotting.plot_profiles([pb, pr], labels=["beads", "rods"])
     fig.axes[0].set_title("area fractions of the beads and of the rods along the channel")
-    fig.tight_layout()
     fig.savefig(out("profile.png"), dpi=150)
     plt.close("all")
 
@@ -73,7 +72,6 @@ def main(outdir):
                      label=rf"fit: $\phi_+$={phi_plus:.2f}, $\ell$={ell:.1f}, $\phi_0$={phi0:.2f}")
     fig.axes[0].legend()
     fig.axes[0].set_xlabel("distance ahead of the rod layer (d)")
-    fig.tight_layout()
     fig.savefig(out("layer_profile.png"), dpi=150)
     plt.close("all")
 
@@ -118,7 +116,7 @@ def main(outdir):
     a1.set_xlabel("x (d)")
     a1.set_ylabel("y (d)")
     pt = A.area_fraction_profile(afr, ann, "theta", 36, "beads")
-    a2.step(pt.centres, pt.fraction, where="mid", label="beads")
+    a2.stairs(pt.fraction, pt.edges, baseline=None, label="beads")
     a2.set_xlabel(r"$\theta$ (rad)")
     a2.set_ylabel("area fraction of beads")
     lay = A.layer_sides(afr, ann)

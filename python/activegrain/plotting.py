@@ -1,5 +1,8 @@
 """Figures: snapshots (rods as tapered shapes, beads as discs), profiles, kymographs,
-movies, the phase diagram of a sweep, and the theory's growth rates and point-force profile."""
+movies, the phase diagram of a sweep, and the theory's growth rates and point-force profile.
+
+Every figure is laid out by matplotlib's constrained layout, which makes room for its labels,
+tick labels, titles and colour bars whatever their length (no label is cut off at the edge)."""
 import shutil
 
 import numpy as np
@@ -161,8 +164,8 @@ def snapshot(frame, geometry=None, path=None, width=10.0, title=None, seconds=Tr
     ``path`` if given. Returns the figure."""
     L = frame.box.lengths[:2] if geometry is None else geometry.extent
     height = max(2.0, (width - 1.2) * L[1] / L[0]) + 0.9
-    fig = plt.figure(figsize=(width, height))
-    grid = fig.add_gridspec(1, 2, width_ratios=[width - 1.2, 1.2], wspace=0.02)
+    fig = plt.figure(figsize=(width, height), layout="constrained")
+    grid = fig.add_gridspec(1, 2, width_ratios=[width - 1.2, 1.2])
     ax = fig.add_subplot(grid[0])
     draw_snapshot(ax, frame, geometry)
     unit = length_label(frame)
@@ -170,22 +173,21 @@ def snapshot(frame, geometry=None, path=None, width=10.0, title=None, seconds=Tr
     ax.set_ylabel(f"y ({unit})")
     ax.set_title(title or frame_title(frame, seconds), fontsize=10)
     draw_heading_wheel(fig.add_subplot(grid[1]))
-    fig.subplots_adjust(left=0.07 * 10 / width, right=0.99, bottom=0.55 / height + 0.02,
-                        top=1 - 0.4 / height)
     if path:
         fig.savefig(path, dpi=dpi)
     return fig
 
 
 def plot_profiles(profiles, path=None, labels=None, ax=None, unit="d", title=None):
-    """Line plot of :class:`activegrain.analysis.Profile` objects against their coordinate (in
-    ``unit``), the area fraction's species named on the axis."""
+    """Step plot of :class:`activegrain.analysis.Profile` objects against their coordinate (in
+    ``unit``), each bin drawn over its whole width (the end bins too), the area fraction's species
+    named on the axis."""
     fig = None
     if ax is None:
-        fig, ax = plt.subplots(figsize=(7, 3.5))
+        fig, ax = plt.subplots(figsize=(7, 3.5), layout="constrained")
     for i, p in enumerate(profiles):
-        ax.step(p.centres, p.fraction, where="mid",
-                label=labels[i] if labels else SPECIES_LABELS.get(p.species, p.species))
+        ax.stairs(p.fraction, p.edges, baseline=None,
+                  label=labels[i] if labels else SPECIES_LABELS.get(p.species, p.species))
     ax.set_xlabel(coord_label(profiles[0].coord, unit))
     species = {p.species for p in profiles}
     one = species.pop() if len(species) == 1 else None
@@ -193,17 +195,15 @@ def plot_profiles(profiles, path=None, labels=None, ax=None, unit="d", title=Non
     if title:
         ax.set_title(title, fontsize=10)
     ax.legend()
-    if fig is not None:
-        fig.tight_layout()
-        if path:
-            fig.savefig(path, dpi=150)
+    if fig is not None and path:
+        fig.savefig(path, dpi=150)
     return fig or ax.figure
 
 
 def plot_map(x_edges, y_edges, phi, path=None, label="area fraction", unit="d", title=None):
     """Image of a 2D area-fraction map (``phi[nx, ny]``; NaN outside the cell), axes in ``unit``."""
     L = (x_edges[-1] - x_edges[0], y_edges[-1] - y_edges[0])
-    fig, ax = plt.subplots(figsize=(8, max(1.8, 8 * L[1] / L[0]) + 0.9))
+    fig, ax = plt.subplots(figsize=(8, max(1.8, 8 * L[1] / L[0]) + 0.9), layout="constrained")
     m = ax.pcolormesh(x_edges, y_edges, np.asarray(phi).T, cmap="viridis", vmin=0)
     fig.colorbar(m, ax=ax, label=label)
     ax.set_xlabel(f"x ({unit})")
@@ -211,7 +211,6 @@ def plot_map(x_edges, y_edges, phi, path=None, label="area fraction", unit="d", 
     if title:
         ax.set_title(title, fontsize=10)
     ax.set_aspect("equal")
-    fig.tight_layout()
     if path:
         fig.savefig(path, dpi=150)
     return fig
@@ -223,7 +222,7 @@ def kymograph(times, profiles, path=None, label=None, unit="d", seconds=True, ti
     (``seconds``) or MD steps."""
     fractions = np.array([p.fraction for p in profiles])
     e = profiles[0].edges
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     t = np.asarray(times, float)
     t_edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]]) if len(t) > 1 else [t[0] - 0.5, t[0] + 0.5]
     m = ax.pcolormesh(e, t_edges, fractions, shading="flat", cmap="viridis")
@@ -233,7 +232,6 @@ def kymograph(times, profiles, path=None, label=None, unit="d", seconds=True, ti
     ax.set_ylabel("time (s)" if seconds else "MD step")
     if title:
         ax.set_title(title, fontsize=10)
-    fig.tight_layout()
     if path:
         fig.savefig(path, dpi=150)
     return fig
@@ -270,7 +268,7 @@ def movie(frames, path, geometry=None, fps=10, width=8.0, seconds=True):
 
 def plot_growth_rates(k, rates, path=None, title=None):
     """Real (solid) and imaginary (dashed) parts of the growth rates lambda(k)."""
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig, ax = plt.subplots(figsize=(6, 3.8), layout="constrained")
     for i in range(rates.shape[-1]):
         ax.plot(k, rates[:, i].real, label=f"Re $\\lambda_{i + 1}$")
         if np.any(np.abs(rates[:, i].imag) > 0):
@@ -281,7 +279,6 @@ def plot_growth_rates(k, rates, path=None, title=None):
     ax.legend()
     if title:
         ax.set_title(title)
-    fig.tight_layout()
     if path:
         fig.savefig(path, dpi=150)
     return fig
@@ -289,7 +286,7 @@ def plot_growth_rates(k, rates, path=None, title=None):
 
 def plot_point_force(x, curves, pf, path=None):
     """Density profiles around a moving point force: ``curves`` maps labels to rho(x)."""
-    fig, ax = plt.subplots(figsize=(6, 3.8))
+    fig, ax = plt.subplots(figsize=(6, 3.8), layout="constrained")
     for label, rho in curves.items():
         ax.plot(x, rho, label=label)
     ax.axvline(0, color="k", lw=0.5)
@@ -298,7 +295,6 @@ def plot_point_force(x, curves, pf, path=None):
     ax.set_ylabel(r"bead density $\rho$")
     ax.set_title(rf"$\rho_+$ = {pf.rho_plus:.3f}, $\ell_+$ = {pf.ell_plus:.3g}")
     ax.legend()
-    fig.tight_layout()
     if path:
         fig.savefig(path, dpi=150)
     return fig
@@ -308,7 +304,7 @@ def phase_diagram(points, path, title=None):
     """Markers per phase on (phi_b, phi_r), as the paper's Figs. 2a and 3a. ``points``:
     {(phi_b, phi_r): (majority phase, seeds that show it, seeds)} (:func:`activegrain.sweep.majority`);
     a point where the seeds disagree shows its majority phase with ``k/n`` beside it."""
-    fig, ax = plt.subplots(figsize=(6.0, 3.8))
+    fig, ax = plt.subplots(figsize=(6.0, 3.8), layout="constrained")
     for phase, (marker, face, edge) in PHASE_MARKERS.items():
         xy = [k for k, v in points.items() if v[0] == phase]
         if phase in _RARE_PHASES and not xy:
@@ -329,7 +325,6 @@ def phase_diagram(points, path, title=None):
     if title:
         ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5), frameon=False)
-    fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
     return path

@@ -1,3 +1,4 @@
+import os
 import pathlib
 import sys
 
@@ -5,8 +6,11 @@ import matplotlib
 import pytest
 
 matplotlib.use("Agg")
-# the checkout's package, as ctest's PYTHONPATH gives it, also under a plain pytest
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
+# the checkout's package, as ctest's PYTHONPATH gives it, also under a plain pytest (for the
+# Pythons that tests start too)
+PYTHON_DIR = str(pathlib.Path(__file__).resolve().parents[2] / "python")
+sys.path.insert(0, PYTHON_DIR)
+os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [PYTHON_DIR, os.environ.get("PYTHONPATH")]))
 
 
 @pytest.fixture(scope="session")
