@@ -240,7 +240,9 @@ def cmd_condensate(args, out):
 
 def cmd_motility(args, out):
     tracks = motility.rod_tracks(_frames(args))
-    summary = motility.motility_summary(tracks, args.max_lag, use_velocities=not args.from_positions)
+    summary = motility.motility_summary(tracks, args.max_lag, use_velocities=not args.from_positions,
+                                        length=motility.length_unit_name(args.length_unit),
+                                        time="s" if args.timestep is not None else "step")
     out.write(json.dumps(summary, indent=1) + "\n")
 
 
@@ -509,8 +511,13 @@ def build_parser():
     p = _command(sub, "motility", "rods' speed along their axes, mean square displacement, persistence time",
                  "Track the rods over the frames: their speed along their own axes (mean and spread), "
                  "a persistent random walk fitted to their mean square displacement, and the heading "
-                 "correlation time; printed as JSON. Needs frames close enough that rods move less "
-                 "than half the box between them.",
+                 "correlation time; printed as JSON, with the unit of each quantity under \"units\": "
+                 "lengths in mm for --length-unit 1e-3 (the dump's metres divided by it; m for 1), "
+                 "times in s with --timestep, else in MD steps. A persistence time longer than the "
+                 "longest lag (\"longest_lag\", --max-lag frames) is not resolved by the run: it is "
+                 "null, its flag (\"persistence_time_resolved\", \"msd_persistence_time_resolved\") false, "
+                 "and a WARNING line says so. Needs frames close "
+                 "enough that rods move less than half the box between them.",
                  [f"motility out/rod.dump {ex}",
                   f"motility out/rod.dump {ex} --from-positions --max-lag 200"])
     p.add_argument("--from-positions", action="store_true",
@@ -662,6 +669,11 @@ def _error_text(e):
     return " ".join(str(e).split()) or type(e).__name__
 
 
+# What a command warns of, each in one line on stderr (not Python's warning with its source line).
+_ONE_LINE_WARNINGS = (io.TruncatedDumpWarning, analysis.ShortRunWarning, analysis.SingleFrameWarning,
+                     motility.UnresolvedPersistenceWarning)
+
+
 def main(argv=None, out=None):
     """Run the command line; returns the exit status (0, 1 for an error met by the command; a
     bad command line exits with status 2)."""
@@ -674,16 +686,14 @@ def main(argv=None, out=None):
     show = warnings.showwarning
 
     def one_line(message, category, *rest, **kw):
-        if issubclass(category, (io.TruncatedDumpWarning, analysis.ShortRunWarning,
-                                     analysis.SingleFrameWarning)):
+        if issubclass(category, _ONE_LINE_WARNINGS):
             sys.stderr.write(f"WARNING: {name}: {message}\n")
         else:
             show(message, category, *rest, **kw)
     with warnings.catch_warnings():
         warnings.showwarning = one_line
-        warnings.simplefilter("always", io.TruncatedDumpWarning)     # each dump's, every call
-        warnings.simplefilter("always", analysis.ShortRunWarning)
-        warnings.simplefilter("always", analysis.SingleFrameWarning)
+        for category in _ONE_LINE_WARNINGS:
+            warnings.simplefilter("always", category)     # each dump's, every call
         try:
             args.func(args, out or sys.stdout)
         except ModuleNotFoundError as e:

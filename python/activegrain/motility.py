@@ -5,7 +5,13 @@ Rods perform a persistent random walk nose-first (Kumar et al. 2014: 3.6 mm/s me
 <p(t).p(0)> = exp(-t/tau) (2D), the mean squared displacement is
 MSD(t) = 2 v^2 tau^2 (t/tau - 1 + exp(-t/tau)): ballistic v^2 t^2 at t << tau,
 diffusive 2 v^2 tau t at t >> tau.
+
+A persistence time is measured only when the rods' headings have decorrelated within the lags
+measured: a tau longer than the longest lag (at most half the tracked time by default) is the
+extrapolation of the first slope of a curve that has not yet decayed by a factor e, and is
+reported as unresolved (None, with an :class:`UnresolvedPersistenceWarning`), not as a number.
 """
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -113,14 +119,48 @@ def fit_persistent_walk(lag_t, msd_values):
     return float(v), float(tau)
 
 
-def motility_summary(tracks, max_lag=None, use_velocities=True):
-    """Speed along the axis (mean, s.d.), persistence time from the orientation
-    correlation, and (speed, tau) fitted to the MSD."""
+class UnresolvedPersistenceWarning(UserWarning):
+    """A persistence time longer than the longest lag measured: the track is too short for it."""
+
+
+def length_unit_name(length_unit):
+    """The unit of lengths read with ``length_unit`` from an SI dump (metres): mm for 1e-3."""
+    return {1.0: "m", 1e-3: "mm", 1e-6: "um"}.get(length_unit, f"{length_unit:g} m")
+
+
+def motility_summary(tracks, max_lag=None, use_velocities=True, length="mm", time="s"):
+    """Speed along the axis (mean, s.d.), persistence time from the orientation correlation,
+    and (speed, tau) fitted to the MSD, with the units of each (``units``: the tracks' units of
+    ``length`` and ``time``, for the example decks' dumps read with ``length_unit=1e-3`` and
+    their time step mm and s), the tracked time (``tracked_duration``) and the longest lag of the
+    correlation and the MSD (``longest_lag``, ``max_lag`` frames, default half of them).
+
+    A persistence time longer than ``longest_lag`` is not resolved by the tracks: it is None,
+    its ``*_resolved`` flag False, and an :class:`UnresolvedPersistenceWarning` says so."""
     u = axial_speed(tracks, use_velocities)
     dt = float(np.median(np.diff(tracks.t)))
     lags, C = orientation_correlation(tracks.axis, max_lag)
     lags_m, M = msd(tracks.centre, max_lag)
     v_fit, tau_fit = fit_persistent_walk(lags_m * dt, M)
-    return {"axial_speed_mean": float(u.mean()), "axial_speed_sd": float(u.std()),
-            "persistence_time": persistence_time(lags * dt, C),
-            "msd_speed": v_fit, "msd_persistence_time": tau_fit}
+    longest = float(lags[-1] * dt)
+    duration = float(tracks.t[-1] - tracks.t[0])
+    summary = {"rods": len(tracks.ids), "frames": len(tracks.t), "tracked_duration": duration,
+               "longest_lag": longest, "axial_speed_mean": float(u.mean()), "axial_speed_sd": float(u.std()),
+               "msd_speed": v_fit}
+    unresolved = []
+    for name, tau in (("persistence_time", persistence_time(lags * dt, C)), ("msd_persistence_time", tau_fit)):
+        resolved = tau <= longest
+        summary[name] = tau if resolved else None
+        summary[name + "_resolved"] = resolved
+        if not resolved:
+            unresolved.append(name)
+    if unresolved:
+        warnings.warn(f"persistence time not resolved ({' and '.join(unresolved)} null): longer than the longest "
+                      f"lag, {longest:g} {time} (heading correlation {C[-1]:.2f} there), of {duration:g} {time} "
+                      "tracked; track the rods over several persistence times", UnresolvedPersistenceWarning,
+                      stacklevel=2)
+    speed = f"{length}/{time}"
+    summary["units"] = {"tracked_duration": time, "longest_lag": time, "axial_speed_mean": speed,
+                        "axial_speed_sd": speed, "msd_speed": speed, "persistence_time": time,
+                        "msd_persistence_time": time}
+    return summary

@@ -167,6 +167,27 @@ def test_motility_command(tmp_path):
     assert json.loads(text)["axial_speed_mean"] == pytest.approx(3.0, rel=0.05)
 
 
+def test_motility_command_gives_units_and_flags_a_persistence_time_it_cannot_resolve(tmp_path, capsys):
+    import json
+    rng = np.random.default_rng(3)
+    box = S.square_box(40)
+    walks = [S.persistent_walk(76, 0.02, 3.6, 50.0, rng, start=(6.0 * k + 3, 20.0)) for k in range(6)]
+    dump = tmp_path / "short.dump"     # 1.5 s of rods whose headings persist for 50 s
+    write_dump(dump, [S.make_frame(box, [], 0.5, [w[1][i] for w in walks], [w[2][i] for w in walks],
+                                   rod_vel=[3.6 * w[2][i] for w in walks], step=200 * i).scaled(1e-3)
+                      for i in range(76)])
+    rc, text = run(["motility", str(dump), "--length-unit", "1e-3", "--timestep", "1e-4"])
+    assert rc == 0, text
+    summary = json.loads(text)
+    assert summary["tracked_duration"] == pytest.approx(1.5) and summary["units"]["tracked_duration"] == "s"
+    assert summary["axial_speed_mean"] == pytest.approx(3.6, rel=1e-3) and summary["units"]["axial_speed_mean"] == "mm/s"
+    assert summary["persistence_time"] is None and summary["persistence_time_resolved"] is False
+    err = capsys.readouterr().err
+    assert err.startswith("WARNING: activegrain motility: persistence time not resolved") and err.count("\n") == 1
+    rc, text = run(["motility", str(dump)])       # metres and MD steps
+    assert json.loads(text)["units"]["axial_speed_mean"] == "m/step"
+
+
 def test_annulus_geometry_on_the_command_line(tmp_path):
     box = Box((-30.0, -30.0, 0.0), (30.0, 30.0, 1.12), (False, False, False))
     radii = np.arange(16.0, 27.5, 1.15)

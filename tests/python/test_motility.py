@@ -50,3 +50,33 @@ def test_tracks_from_dump_unwrap_periodic_boundaries(tmp_path):
 def test_persistence_time_needs_correlated_data():
     with pytest.raises(ValueError, match="floor"):
         M.persistence_time([0.0, 1.0, 2.0], [1.0, 0.0, 0.0])
+
+
+def test_every_quantity_has_its_unit():
+    rng = np.random.default_rng(2)
+    walks = [S.persistent_walk(500, 0.02, 3.6, 1.0, rng) for _ in range(10)]
+    tracks = M.RodTracks(walks[0][0], np.arange(10), np.stack([w[1] for w in walks], 1),
+                         np.stack([w[2] for w in walks], 1))
+    summary = M.motility_summary(tracks, length="mm", time="s")
+    measured = {k for k, v in summary.items() if isinstance(v, float)}
+    assert measured == set(summary["units"]) - {k for k, v in summary.items() if v is None}
+    assert summary["units"]["axial_speed_mean"] == summary["units"]["msd_speed"] == "mm/s"
+    assert summary["units"]["persistence_time"] == summary["units"]["tracked_duration"] == "s"
+    assert summary["tracked_duration"] == pytest.approx(499 * 0.02)
+    assert summary["longest_lag"] == pytest.approx(250 * 0.02)            # half the frames
+    assert summary["persistence_time_resolved"] and summary["msd_persistence_time_resolved"]
+    assert M.length_unit_name(1e-3) == "mm" and M.length_unit_name(1.0) == "m"
+
+
+def test_a_persistence_time_longer_than_the_track_is_unresolved_not_a_number():
+    # rods that keep their heading for 50 s, tracked for 1.5 s: their heading has barely turned
+    rng = np.random.default_rng(5)
+    walks = [S.persistent_walk(76, 0.02, 3.6, 50.0, rng) for _ in range(20)]
+    tracks = M.RodTracks(walks[0][0], np.arange(20), np.stack([w[1] for w in walks], 1),
+                         np.stack([w[2] for w in walks], 1))
+    with pytest.warns(M.UnresolvedPersistenceWarning, match="longer than the longest lag, 0.76 s"):
+        summary = M.motility_summary(tracks)
+    assert summary["persistence_time"] is None and summary["persistence_time_resolved"] is False
+    assert summary["msd_persistence_time"] is None and summary["msd_persistence_time_resolved"] is False
+    assert summary["axial_speed_mean"] == pytest.approx(3.6, rel=0.01)   # the speed is measured
+    assert summary["msd_speed"] == pytest.approx(3.6, rel=0.05)
