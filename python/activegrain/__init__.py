@@ -7,7 +7,7 @@ from . import _env
 
 try:
     from .geometry import Box, Channel, PeriodicBox, Rectangle, Annulus, geometry_from_box
-    from .io import Frame, TruncatedDumpWarning, read_dump, read_frame, write_dump
+    from .io import Dump, Frame, TruncatedDumpWarning, read_dump, read_frame, write_dump
 except ModuleNotFoundError as e:
     if not _env.is_third_party(e.name):
         raise
@@ -17,4 +17,4 @@ except ModuleNotFoundError as e:
     raise ModuleNotFoundError(_env.missing_module_line(e.name), name=e.name) from None
 
 __all__ = ["Box", "Channel", "PeriodicBox", "Rectangle", "Annulus", "geometry_from_box",
-           "Frame", "TruncatedDumpWarning", "read_dump", "read_frame", "write_dump"]
+           "Dump", "Frame", "TruncatedDumpWarning", "read_dump", "read_frame", "write_dump"]

@@ -14,6 +14,7 @@ run) is read to its last whole frame with a line ``WARNING: activegrain COMMAND:
 on stderr).
 """
 import argparse
+import itertools
 import json
 import os
 import pathlib
@@ -75,11 +76,23 @@ def _timestep(args):
     return 1.0 if args.timestep is None else args.timestep
 
 
+def _check_every(args):
+    if args.every is not None and args.every < 1:
+        raise ValueError(f"--every {args.every}: 1 or more")
+
+
 def _frames(args):
-    kw = dict(length_unit=args.length_unit, timestep=_timestep(args))
-    if args.frame is not None:
-        return [io.read_frame(args.dump, args.frame, **kw)]
-    return list(io.read_dump(args.dump, every=args.every, **kw))
+    """The frames that --frame and --every choose, each read from the dump when the analysis
+    reaches it (never the whole dump in memory)."""
+    _check_every(args)
+    dump = io.Dump(args.dump, length_unit=args.length_unit, timestep=_timestep(args))
+    return iter([dump.frame(args.frame)]) if args.frame is not None else dump.frames(every=args.every)
+
+
+def _peek(frames):
+    """(the first of ``frames``, an iterator over all of them, the first included)."""
+    first = next(frames)
+    return first, itertools.chain([first], frames)
 
 
 def _geometry(args, frame):
@@ -89,13 +102,39 @@ def _geometry(args, frame):
                              args.r_in / u, None if args.r_out is None else args.r_out / u)
 
 
-def _span(frames, args):
-    """The frames' time span for a title: "mean over t = 0-2 s (41 frames)"."""
-    unit = " s" if args.timestep is not None else " (MD steps)"
-    from .plotting import seconds_text as text
-    if len(frames) == 1:
-        return f"t = {text(frames[0].time)}{unit}"
-    return f"mean over t = {text(frames[0].time)}-{text(frames[-1].time)}{unit} ({len(frames)} frames)"
+class _TimeSpan:
+    """The frames analysed, counted as they pass, for a figure's title."""
+
+    def __init__(self):
+        self.count, self.first, self.last = 0, None, None
+
+    def add(self, frame):
+        self.count += 1
+        self.first = frame.time if self.first is None else self.first
+        self.last = frame.time
+
+    def title(self, args):
+        """"t = 2.00 s", or "mean over t = 0-2 s (41 frames)"."""
+        unit = " s" if args.timestep is not None else " (MD steps)"
+        from .plotting import seconds_text as text
+        if self.count == 1:
+            return f"t = {text(self.first)}{unit}"
+        return f"mean over t = {text(self.first)}-{text(self.last)}{unit} ({self.count} frames)"
+
+
+def _running_mean(frames, measure, values):
+    """Over ``frames``, one at a time: the first frame's ``measure(frame)``, the mean over the
+    frames of the array ``values(measure(frame))``, kept as a running sum, and their
+    :class:`_TimeSpan`."""
+    first, total, span = None, None, _TimeSpan()
+    for fr in frames:
+        measured = measure(fr)
+        if first is None:
+            first, total = measured, np.array(values(measured), float)
+        else:
+            total += values(measured)
+        span.add(fr)
+    return first, total / span.count, span
 
 
 def _print_table(rows, out):
@@ -110,51 +149,49 @@ def _print_table(rows, out):
 def cmd_profile(args, out):
     if args.fit is not None and not args.relative_to_layer:
         raise ValueError("--fit needs --relative-to-layer")
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
+    first, frames = _peek(_frames(args))
+    geom = _geometry(args, first)
     if args.relative_to_layer:
-        profiles = io.run_frames(frames, lambda k, fr, previous: analysis.layer_profile(
-            fr, geom, extent=args.extent, bins=args.bins, species=args.species))
+        measure = lambda fr: analysis.layer_profile(fr, geom, extent=args.extent, bins=args.bins,
+                                                    species=args.species)
         name = "distance_ahead_of_layer"
     else:
-        profiles = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_profile(
-            fr, geom, args.coord, args.bins, args.species, count=args.count))
+        measure = lambda fr: analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species,
+                                                            count=args.count)
         name = args.coord
-    mean = np.mean([p.fraction for p in profiles], axis=0)
-    avg = analysis.Profile(profiles[0].coord, args.species, profiles[0].edges, mean)
+    profile, mean, span = _running_mean(frames, measure, lambda p: p.fraction)
+    avg = analysis.Profile(profile.coord, args.species, profile.edges, mean)
     _print_table([{name: float(c), "area_fraction": float(v)} for c, v in zip(avg.centres, mean)], out)
     if args.fit is not None:
         phi_plus, ell, phi0 = analysis.fit_layer_exponential(avg, args.fit[0], args.fit[1])
         out.write(f"# eq. 5 fit: phi_plus {phi_plus:.6g} ell {ell:.6g} phi0 {phi0:.6g}\n")
     if args.plot:
         from . import plotting
-        label = f"{plotting.SPECIES_LABELS[args.species]}, mean of {len(frames)} frame(s)"
-        plotting.plot_profiles([avg], args.plot, labels=[label], unit=plotting.length_label(frames[0]),
-                               title=_span(frames, args))
+        label = f"{plotting.SPECIES_LABELS[args.species]}, mean of {span.count} frame(s)"
+        plotting.plot_profiles([avg], args.plot, labels=[label], unit=plotting.length_label(first),
+                               title=span.title(args))
 
 
 def cmd_map(args, out):
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
-    maps = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_map(
-        fr, geom, tuple(args.bins), args.species, count=args.count))
-    xe, ye = maps[0][0], maps[0][1]
-    phi = np.mean([m[2] for m in maps], axis=0)
+    first, frames = _peek(_frames(args))
+    geom = _geometry(args, first)
+    (xe, ye, _), phi, span = _running_mean(frames, lambda fr: analysis.area_fraction_map(
+        fr, geom, tuple(args.bins), args.species, count=args.count), lambda m: m[2])
     if args.output.endswith(".txt") or args.output.endswith(".csv"):
         np.savetxt(args.output, phi.T, fmt="%.6g",
                    header=f"{args.species} area fraction, rows y ({ye[0]:g}..{ye[-1]:g}), "
-                          f"columns x ({xe[0]:g}..{xe[-1]:g}), mean of {len(frames)} frame(s)")
+                          f"columns x ({xe[0]:g}..{xe[-1]:g}), mean of {span.count} frame(s)")
     else:
         from . import plotting
-        plotting.plot_map(xe, ye, phi, args.output, unit=plotting.length_label(frames[0]),
+        plotting.plot_map(xe, ye, phi, args.output, unit=plotting.length_label(first),
                           label=f"area fraction of {plotting.SPECIES_LABELS[args.species]}",
-                          title=_span(frames, args))
+                          title=span.title(args))
     out.write(f"wrote {args.output}\n")
 
 
 def cmd_polar(args, out):
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
+    first, frames = _peek(_frames(args))
+    geom = _geometry(args, first)
 
     def single_frame(k, fr, previous):
         row = {"step": fr.step, "time": fr.time}
@@ -163,7 +200,7 @@ def cmd_polar(args, out):
         row["gradient_alignment"] = analysis.alignment_of(env["cos"])
         row["phi_b_at_rods"] = float(env["phi_b"].mean()) if len(env["phi_b"]) else float("nan")
         return row
-    _print_table(io.run_frames(frames, single_frame), out)
+    _print_table(list(io.run_frames(frames, single_frame)), out)
 
 
 _LAG_GONE = ("--lag is gone: the phase is measured over a window of time, not a number of frames back "
@@ -179,26 +216,25 @@ def cmd_phase(args, out):
                          "time step (1e-4 in the example decks)")
     if not args.window > 0:
         raise ValueError(f"--window {args.window}: seconds, above 0")
-    if args.every is not None and args.every < 1:
-        raise ValueError(f"--every {args.every}: 1 or more")
-    # every frame of the dump, for the windows; --frame and --every choose the frames classified
-    frames = list(io.read_dump(args.dump, length_unit=args.length_unit, timestep=args.timestep))
+    _check_every(args)
+    # every frame of the dump, read as the windows reach it; --frame and --every choose the frames classified
+    dump = io.Dump(args.dump, length_unit=args.length_unit, timestep=args.timestep)
     if args.frame is not None:
-        if not -len(frames) <= args.frame < len(frames):
-            raise ValueError(f"{args.dump}: no frame {args.frame} (the dump has {len(frames)})")
-        which = [args.frame % len(frames)]
+        if not -len(dump) <= args.frame < len(dump):
+            raise ValueError(f"{args.dump}: no frame {args.frame} (the dump has {len(dump)})")
+        which = [args.frame % len(dump)]
     else:
-        which = range(0, len(frames), args.every or 1)
-    geom = _geometry(args, frames[0])
-    try:
-        results = analysis.classify_frames(frames, geom, args.window, which=which)
-    except ValueError as e:
-        raise ValueError(f"{args.dump}: {e}") from None
+        which = range(0, len(dump), args.every or 1)
+    first, frames = _peek(dump.frames())
     rows = []
-    for k, res in zip(which, results):
-        row = {"step": frames[k].step, "time": frames[k].time, "phase": res.phase.value}
-        row.update({name: v for name, v in res.observables.items() if name != "layer_coord"})
-        rows.append(row)
+    try:
+        for k, frame, res in analysis.iter_phases(frames, _geometry(args, first), args.window, which=which):
+            row = {"step": frame.step, "time": frame.time, "phase": res.phase.value}
+            row.update({name: v for name, v in res.observables.items() if name != "layer_coord"})
+            rows.append(row)
+    except ValueError as e:      # the classifier's errors name the dump (the reader's name it already)
+        text = str(e)
+        raise ValueError(text if text.startswith(f"{args.dump}: ") else f"{args.dump}: {text}") from None
     _print_table(rows, out)
 
 
@@ -207,13 +243,14 @@ def cmd_condensate(args, out):
         raise ValueError(f"--lag {args.lag}: frames back, 1 or more")
     if args.reach <= 0:
         raise ValueError(f"--reach {args.reach}: rod lengths, above 0")
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
-    arcs = io.run_frames(frames, lambda k, fr, previous: analysis.dense_arc(fr, geom, args.threshold, args.sectors))
+    first, frames = _peek(_frames(args))
+    geom = _geometry(args, first)
+    arcs = []       # every frame's arc (small), for the drift against the frame --lag back
 
     def single_frame(k, fr, before):
         row = {"step": fr.step, "time": fr.time}
-        arc = arcs[k]
+        arc = analysis.dense_arc(fr, geom, args.threshold, args.sectors)
+        arcs.append(arc)
         if arc is not None:
             at_start, at_stop = analysis.capping_rods(fr, geom, arc, args.reach)
             row.update(start_deg=float(np.degrees(arc.start)), width_deg=float(np.degrees(arc.width)),
@@ -224,7 +261,7 @@ def cmd_condensate(args, out):
                 row["drift_speed"] = (analysis.arc_drift(fr, before, geom, arcs[k - args.lag])
                                       / (fr.time - before.time))
         return row
-    rows = io.run_frames(frames, single_frame, lag=args.lag)
+    rows = list(io.run_frames(frames, single_frame, lag=args.lag))
     _print_table(rows, out)
     if args.traps is not None:
         column = lambda name: [r.get(name, float("nan")) for r in rows]
@@ -255,26 +292,28 @@ def cmd_snapshot(args, out):
 
 def cmd_kymograph(args, out):
     from . import plotting
-    frames = _frames(args)
-    geom = _geometry(args, frames[0])
-    profiles = io.run_frames(frames, lambda k, fr, previous: analysis.area_fraction_profile(
-        fr, geom, args.coord, args.bins, args.species))
-    plotting.kymograph([fr.time for fr in frames], profiles, args.output, unit=plotting.length_label(frames[0]),
+    first, frames = _peek(_frames(args))
+    geom = _geometry(args, first)
+    times, profiles = [], []       # a row per frame (small), not the frames
+    for fr in frames:
+        times.append(fr.time)
+        profiles.append(analysis.area_fraction_profile(fr, geom, args.coord, args.bins, args.species))
+    plotting.kymograph(times, profiles, args.output, unit=plotting.length_label(first),
                        seconds=args.timestep is not None)
     out.write(f"wrote {args.output}\n")
 
 
 def cmd_movie(args, out):
     from . import plotting
-    frames = _frames(args)
-    plotting.movie(frames, args.output, _geometry(args, frames[0]), fps=args.fps, seconds=args.timestep is not None)
-    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+    first, frames = _peek(_frames(args))
+    count = plotting.movie(frames, args.output, _geometry(args, first), fps=args.fps,
+                           seconds=args.timestep is not None)
+    out.write(f"wrote {args.output} ({count} frames)\n")
 
 
 def cmd_convert(args, out):
-    frames = _frames(args)
-    io.write_extxyz(args.output, frames)
-    out.write(f"wrote {args.output} ({len(frames)} frames)\n")
+    count = io.write_extxyz(args.output, _frames(args))
+    out.write(f"wrote {args.output} ({count} frames)\n")
 
 
 def cmd_theory(args, out):

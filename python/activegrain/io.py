@@ -196,8 +196,49 @@ def _frame(step, timestep, box, columns, rows, path):
                  as_int("body") if "body" in col else None)
 
 
+class Dump:
+    """A LAMMPS text dump read frame by frame, as MDAnalysis's readers read a trajectory: its
+    whole frames are counted once, on opening (``len(dump)``; a :class:`TruncatedDumpWarning` if
+    it ends within a frame, ValueError if it holds none), and each frame is parsed when it is
+    reached, the lines of the frames left out skipped unparsed, so that memory holds one frame
+    whatever the length of the dump. ``length_unit`` and ``timestep`` as for :func:`read_dump`."""
+
+    def __init__(self, path, length_unit=1.0, timestep=1.0):
+        self.path, self.length_unit, self.timestep = path, length_unit, timestep
+        self.n_frames = count_frames(path)
+
+    def __len__(self):
+        return self.n_frames
+
+    def frames(self, start=None, stop=None, every=None):
+        """Yield the frames that the slice ``start:stop:every`` selects, one at a time; reading
+        stops after the last of them."""
+        wanted = range(self.n_frames)[slice(start, stop, every)]
+        if not wanted:
+            return
+        chosen, last = set(wanted), max(wanted)
+        first_box = None
+        with open(self.path) as f:
+            for index, step, box, columns, rows in _frames_in(f, self.path, chosen):
+                if index > last or box is None:      # past the selection, or a frame cut short
+                    break
+                first_box = first_box or box
+                if not np.allclose(box.lengths, first_box.lengths, rtol=1e-6):
+                    raise ValueError(f"{self.path}: the box changes at step {step}; only fixed boxes are supported")
+                if index in chosen:
+                    frame = _frame(step, self.timestep, box, columns, rows, self.path)
+                    yield frame.scaled(1.0 / self.length_unit) if self.length_unit != 1.0 else frame
+
+    def frame(self, index=-1):
+        """One frame (``index`` as in a Python list; -1 is the last whole frame)."""
+        if not -self.n_frames <= index < self.n_frames:
+            raise ValueError(f"{self.path}: no frame {index} (the dump has {self.n_frames})")
+        index %= self.n_frames
+        return next(self.frames(index, index + 1))
+
+
 def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=None):
-    """Yield the :class:`Frame` objects of a LAMMPS text dump.
+    """Yield the :class:`Frame` objects of a LAMMPS text dump, one at a time (:class:`Dump`).
 
     ``length_unit``: lengths (and velocities) are divided by it, e.g. ``1e-3`` to work
     in bead diameters when the dump is in metres. ``timestep``: time per MD step, so that
@@ -208,23 +249,7 @@ def read_dump(path, length_unit=1.0, timestep=1.0, start=None, stop=None, every=
     A dump that ends within a frame (a run killed while writing it) is read up to its last
     whole frame, with a :class:`TruncatedDumpWarning` naming the file and the frames read.
     """
-    yield from _read(path, count_frames(path), length_unit, timestep, start, stop, every)
-
-
-def _read(path, n, length_unit=1.0, timestep=1.0, start=None, stop=None, every=None):
-    """The frames of the first ``n`` (whole) frames of ``path`` that the slice selects."""
-    wanted = set(range(n)[slice(start, stop, every)])
-    first_box = None
-    with open(path) as f:
-        for index, step, box, columns, rows in _frames_in(f, path, wanted):
-            if index >= n or box is None:      # a frame written since the count, or cut short
-                break
-            first_box = first_box or box
-            if not np.allclose(box.lengths, first_box.lengths, rtol=1e-6):
-                raise ValueError(f"{path}: the box changes at step {step}; only fixed boxes are supported")
-            if index in wanted:
-                frame = _frame(step, timestep, box, columns, rows, path)
-                yield frame.scaled(1.0 / length_unit) if length_unit != 1.0 else frame
+    yield from Dump(path, length_unit, timestep).frames(start, stop, every)
 
 
 def count_frames(path):
@@ -244,11 +269,7 @@ def count_frames(path):
 
 def read_frame(path, index=-1, **kw):
     """One frame of a dump (``index`` as in a Python list; -1 is the last whole frame)."""
-    n = count_frames(path)
-    if not -n <= index < n:
-        raise ValueError(f"{path}: no frame {index} (the dump has {n})")
-    index %= n
-    return next(_read(path, n, start=index, stop=index + 1, **kw))
+    return Dump(path, **kw).frame(index)
 
 
 def write_dump(path, frames, append=False):
@@ -401,18 +422,26 @@ def to_universe(frames, dt=None, densities=None, shift_to_origin=False):
 
 
 def write_extxyz(path, frames):
-    """Write frames as extended XYZ through ase (cell, pbc, ``mol``, ``radius`` and
-    velocities per atom), a format OVITO and VMD open directly."""
+    """Write frames (any iterable, taken one at a time) as extended XYZ through ase (cell, pbc,
+    ``mol``, ``radius`` and velocities per atom), a format OVITO and VMD open directly. Returns the
+    number of frames written."""
     import ase.io
-    ase.io.write(path, [fr.to_ase() for fr in frames], format="extxyz")
+    written = 0
+    with open(path, "w") as f:
+        for fr in frames:
+            ase.io.write(f, fr.to_ase(), format="extxyz")
+            written += 1
+    return written
 
 
-def run_frames(frames, single_frame, lag=0, start=0, every=1):
-    """``single_frame(k, frame, previous)`` for frames ``start, start + every, ...``, where
-    ``previous`` is the frame ``lag`` places back (None when ``lag`` is 0 or there is none yet):
-    the one loop over frames of the CLI and the sweep, as MDAnalysis's ``AnalysisBase.run(start,
-    stop, step)`` calls ``_single_frame``. Returns the results in order."""
-    if lag < 0 or every < 1:
-        raise ValueError(f"lag {lag} must be >= 0 and every {every} >= 1")
-    return [single_frame(k, frames[k], frames[k - lag] if lag and k >= lag else None)
-            for k in range(start, len(frames), every)]
+def run_frames(frames, single_frame, lag=0):
+    """Yield ``single_frame(k, frame, previous)`` for the frames of ``frames`` (any iterable, taken
+    one at a time), where ``previous`` is the frame ``lag`` places back (None when ``lag`` is 0 or
+    there is none yet): the one loop over frames of the CLI, as MDAnalysis's ``AnalysisBase.run``
+    calls ``_single_frame``. Only the last ``lag`` frames are held."""
+    if lag < 0:
+        raise ValueError(f"lag {lag} must be >= 0")
+    held = collections.deque(maxlen=lag + 1)
+    for k, frame in enumerate(frames):
+        held.append(frame)
+        yield single_frame(k, frame, held[0] if lag and len(held) > lag else None)

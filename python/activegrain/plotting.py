@@ -3,6 +3,7 @@ movies, the phase diagram of a sweep, and the theory's growth rates and point-fo
 
 Every figure is laid out by matplotlib's constrained layout, which makes room for its labels,
 tick labels, titles and colour bars whatever their length (no label is cut off at the edge)."""
+import itertools
 import shutil
 
 import numpy as np
@@ -238,10 +239,13 @@ def kymograph(times, profiles, path=None, label=None, unit="d", seconds=True, ti
 
 
 def movie(frames, path, geometry=None, fps=10, width=8.0, seconds=True):
-    """Animate frames (a list) into ``path``, each drawn as :func:`snapshot` draws it: .gif
-    through Pillow (always available), .mp4 through ffmpeg where it is installed."""
-    frames = list(frames)
-    if not frames:
+    """Animate frames (any iterable, each drawn when it comes) into ``path``, each drawn as
+    :func:`snapshot` draws it: .gif through Pillow (always available; it keeps the drawn images
+    until it writes the file), .mp4 through ffmpeg where it is installed (each image piped to it
+    when drawn). Returns the number of frames."""
+    frames = iter(frames)
+    first = next(frames, None)
+    if first is None:
         raise ValueError("movie: no frames")
     if path.endswith(".gif"):
         writer = animation.PillowWriter(fps=fps)
@@ -249,21 +253,21 @@ def movie(frames, path, geometry=None, fps=10, width=8.0, seconds=True):
         writer = animation.FFMpegWriter(fps=fps)
     else:
         raise RuntimeError("movie: writing mp4 needs ffmpeg, which is not installed; write a .gif")
-    fig = snapshot(frames[0], geometry, width=width, seconds=seconds)
+    fig = snapshot(first, geometry, width=width, seconds=seconds)
     ax = fig.axes[0]
     xlabel, ylabel = ax.get_xlabel(), ax.get_ylabel()
-
-    def update(i):
-        ax.clear()
-        draw_snapshot(ax, frames[i], geometry)
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel(ylabel)
-        ax.set_title(frame_title(frames[i], seconds), fontsize=10)
-        return ax.collections
-
-    anim = animation.FuncAnimation(fig, update, frames=len(frames), blit=False)
-    anim.save(path, writer=writer)
+    count = 0
+    with writer.saving(fig, path, dpi=fig.dpi):
+        for frame in itertools.chain([first], frames):
+            ax.clear()
+            draw_snapshot(ax, frame, geometry)
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(ylabel)
+            ax.set_title(frame_title(frame, seconds), fontsize=10)
+            writer.grab_frame()
+            count += 1
     plt.close(fig)
+    return count
 
 
 def plot_growth_rates(k, rates, path=None, title=None):

@@ -146,17 +146,17 @@ def _dump_of(cfg, folder):
 def classify_run(cfg, dump):
     """Majority phase of the last ``cfg.frames`` frames (each with its window of ``cfg.window``
     seconds) and their mean observables."""
-    frames = list(io.read_dump(dump, length_unit=cfg.length_unit, timestep=cfg.timestep))
-    if len(frames) < 2:
-        raise RuntimeError(f"{dump}: {len(frames)} frame, the phase needs frames over a window of time")
-    first = max(0, len(frames) - cfg.frames)
+    run = io.Dump(dump, length_unit=cfg.length_unit, timestep=cfg.timestep)
+    if len(run) < 2:
+        raise RuntimeError(f"{dump}: {len(run)} frame, the phase needs frames over a window of time")
+    first = max(0, len(run) - cfg.frames)
     u = cfg.length_unit
-    geom = geometry_from_box(frames[0].box, cfg.geometry, None, cfg.r_in / u,
+    geom = geometry_from_box(run.frame(0).box, cfg.geometry, None, cfg.r_in / u,
                              None if cfg.r_out is None else cfg.r_out / u)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", analysis.ShortRunWarning)
-        try:
-            results = analysis.classify_frames(frames, geom, cfg.window, which=range(first, len(frames)))
+        try:    # the dump read once, holding only the frames of the windows still open
+            results = analysis.classify_frames(run.frames(), geom, cfg.window, which=range(first, len(run)))
         except ValueError as e:
             raise RuntimeError(f"{dump}: {e}") from None
     for w in caught:        # with the run's name

@@ -9,6 +9,6 @@ from .layers import (LayerSides, find_layers, fit_layer_exponential, interfacial
 from .order import (alignment_of, gradient_alignment, nematic_order, polar_order, polarization, rod_environment,
                     smoothed_bead_field, tangential_polarization)
 from .phases import (WINDOW, Phase, PhaseResult, PhaseThresholds, ShortRunWarning, SingleFrameWarning,
-                     bead_mobility, classify_frames, classify_phase, decide_phase, layer_side_mobility,
+                     bead_mobility, classify_frames, classify_phase, decide_phase, iter_phases, layer_side_mobility,
                      majority_phase, phase_observables, rod_drift, segregation_index, window_observables,
                      window_of)

@@ -2,6 +2,7 @@
 isotropic) from measured observables: the frame's structure, and rates and time averages over
 a window of the run in seconds, so that the verdict does not depend on how often the run was
 dumped. Also the displacements between two frames the rates are made of."""
+import collections
 import enum
 import warnings
 from dataclasses import dataclass, field
@@ -157,6 +158,22 @@ class PhaseResult:
     observables: dict = field(default_factory=dict)
 
 
+_EDGE = 1e-6
+"""Tolerance of a window's edges, relative to its length (frame times are steps times the time
+step, not exact)."""
+
+
+def _window_start(t, t_first, window):
+    """Where the window of a frame at time ``t`` starts, in a run that starts at ``t_first``."""
+    return max(t - window, t_first)
+
+
+def _in_window(t, start, window):
+    """Whether times ``t`` (a number or an array) lie in the window from ``start``."""
+    eps = _EDGE * window
+    return (t >= start - eps) & (t <= start + window + eps)
+
+
 def window_of(times, k, window=WINDOW):
     """Indices of the frames in the window of frame ``k``: the frames whose times lie within the
     ``window`` seconds up to frame ``k`` ([t_k - window, t_k]); for a frame less than ``window``
@@ -168,9 +185,8 @@ def window_of(times, k, window=WINDOW):
         raise ValueError(f"window {window}: seconds, above 0")
     if np.any(np.diff(times) < 0):
         raise ValueError("the frames are not in time order")
-    eps = 1e-6 * window
-    start = max(times[k] - window, times[0])
-    return [int(j) for j in np.flatnonzero((times >= start - eps) & (times <= start + window + eps))]
+    start = _window_start(times[k], times[0], window)
+    return [int(j) for j in np.flatnonzero(_in_window(times, start, window))]
 
 
 def _unwrapped(frames, positions):
@@ -331,45 +347,102 @@ def classify_phase(frame, geometry, thresholds=None, window=None):
     return PhaseResult(decide_phase(obs, t), obs)
 
 
+def iter_phases(frames, geometry, window=WINDOW, thresholds=None, which=None):
+    """Yield ``(k, frame, PhaseResult)`` for the frames ``which`` of a run (indices from 0;
+    default: all), in the run's order, each as soon as the frames of its window have been read:
+    the loop of :func:`classify_frames`, with its windows, verdicts, warnings and errors.
+
+    ``frames``: any iterable of the run's frames (a dump's :meth:`activegrain.io.Dump.frames`, a
+    list), taken one at a time; only the frames of the windows still open are held (a deque, with
+    their rod sets), so that memory does not grow with the length of the run, and reading stops
+    after the window of the last frame in ``which``."""
+    if not window > 0:
+        raise ValueError(f"window {window}: seconds, above 0")
+    wanted = None if which is None else set(which)
+    if wanted and min(wanted) < 0:
+        raise ValueError(f"frame {min(wanted)}: the frames of a run read as it comes are counted from 0")
+    last_wanted = None if wanted is None else max(wanted, default=-1)
+    held = collections.deque()      # (index, frame) of the windows still open, in time order
+    rods = {}                       # the held frames' rod sets, by index, each made once
+    pending = collections.deque()   # (index, window start) of the wanted frames not yet classified
+    t_first = t_last = None
+    largest_gap = 0.0
+
+    def rods_of(j, frame):
+        if j not in rods:
+            rods[j] = frame.rods()
+        return rods[j]
+
+    def classified(k, start):
+        members = [(j, fr) for j, fr in held if _in_window(fr.time, start, window)]
+        frame = next(fr for j, fr in held if j == k)
+        if members[-1][1].time <= members[0][1].time:
+            raise ValueError(f"the {window:g} s window of the frame at step {frame.step} holds no other "
+                             f"frame: frames are up to {largest_gap:g} s apart; give a window of at least "
+                             f"{largest_gap:g} s (--window) or dump more often")
+        obs = phase_observables(frame, geometry, thresholds, [fr for _, fr in members],
+                                [rods_of(j, fr) for j, fr in members])
+        return k, frame, PhaseResult(decide_phase(obs, thresholds), obs)
+
+    k = -1
+    for k, frame in enumerate(frames):
+        t = frame.time
+        if t_first is None:
+            t_first = t
+        elif t < t_last:
+            raise ValueError("the frames are not in time order")
+        else:
+            largest_gap = max(largest_gap, t - t_last)
+        t_last = t
+        while pending and not _in_window(t, pending[0][1], window):     # its window is whole
+            yield classified(*pending.popleft())
+        held.append((k, frame))
+        if wanted is None or k in wanted:
+            pending.append((k, _window_start(t, t_first, window)))
+        # no window still to come starts before the first pending one, or than the current frame's
+        oldest = pending[0][1] if pending else _window_start(t, t_first, window)
+        while held[0][1].time < oldest - _EDGE * window:
+            rods.pop(held.popleft()[0], None)
+        if last_wanted is not None and k >= last_wanted and not pending:
+            return
+    n = k + 1
+    if n == 0:
+        raise ValueError("no frames to classify")
+    beyond = sorted(j for j in wanted or () if j >= n)
+    if beyond:
+        raise ValueError(f"no frame {beyond[0]} (the run has {n})")
+    if n == 1:
+        warnings.warn(f"a single frame (step {held[0][1].step}): classified by what one frame shows, its "
+                      "structure (no rates: never jammed, and aligned rods are 'aligned', not flock or "
+                      "arrested)", SingleFrameWarning, stacklevel=3)
+        for k, _ in pending:
+            yield k, held[0][1], classify_phase(held[0][1], geometry, thresholds)
+        return
+    if t_last - t_first < window * (1 - _EDGE):
+        warnings.warn(f"the run spans {t_last - t_first:g} s, less than the {window:g} s window: "
+                      "rates and averages over the whole run", ShortRunWarning, stacklevel=3)
+    while pending:
+        yield classified(*pending.popleft())
+
+
 def classify_frames(frames, geometry, window=WINDOW, thresholds=None, which=None):
     """The phase of a run at its frames ``which`` (indices into ``frames``; default: all), each
     with its window of ``window`` seconds (:func:`window_of`) from all of ``frames``: the same
-    run, in time order, times in seconds. Returns a list of :class:`PhaseResult`.
+    run, in time order, times in seconds. Returns a list of :class:`PhaseResult`, in the order of
+    ``which``.
 
     The verdict at a frame depends on the run, not on which frames are classified: thin the
     output with ``which``, not ``frames``. A window must hold two frames: ValueError where it
     holds only its own frame (frames further apart than ``window``); a :class:`ShortRunWarning`
     where the run is shorter than ``window`` (its rates are then over the whole run). A single
     frame is classified by what it shows (:func:`classify_phase` without a window), with a
-    :class:`SingleFrameWarning`."""
-    frames = list(frames)
-    if not frames:
-        raise ValueError("no frames to classify")
-    times = np.array([fr.time for fr in frames], float)
-    which = range(len(frames)) if which is None else [k % len(frames) for k in which]
-    if len(frames) == 1:
-        warnings.warn(f"a single frame (step {frames[0].step}): classified by what one frame shows, its "
-                      "structure (no rates: never jammed, and aligned rods are 'aligned', not flock or "
-                      "arrested)", SingleFrameWarning, stacklevel=2)
-        return [classify_phase(frames[0], geometry, thresholds) for _ in which]
-    if times[-1] - times[0] < window * (1 - 1e-6):
-        warnings.warn(f"the run spans {times[-1] - times[0]:g} s, less than the {window:g} s window: "
-                      "rates and averages over the whole run", ShortRunWarning, stacklevel=2)
-    rods = {}
+    :class:`SingleFrameWarning`.
 
-    def rods_of(j):
-        if j not in rods:
-            rods[j] = frames[j].rods()
-        return rods[j]
-    results = []
-    for k in which:
-        idx = window_of(times, k, window)
-        if times[idx[-1]] <= times[idx[0]]:
-            gap = np.diff(times)
-            raise ValueError(f"the {window:g} s window of the frame at step {frames[k].step} holds no other "
-                             f"frame: frames are up to {gap.max():g} s apart; give a window of at least "
-                             f"{gap.max():g} s (--window) or dump more often")
-        obs = phase_observables(frames[k], geometry, thresholds, [frames[j] for j in idx],
-                                [rods_of(j) for j in idx])
-        results.append(PhaseResult(decide_phase(obs, thresholds), obs))
-    return results
+    ``frames`` may be a list or any iterable, such as the frames of a dump as
+    :class:`activegrain.io.Dump` reads them, which is read once, holding only the frames of the
+    windows still open (:func:`iter_phases`); ``which`` then counts from 0 (a list also takes
+    negative indices)."""
+    if hasattr(frames, "__len__") and which is not None and len(frames):
+        which = [k % len(frames) for k in which]
+    results = {k: result for k, _, result in iter_phases(frames, geometry, window, thresholds, which)}
+    return [results[k] for k in (sorted(results) if which is None else which)]
