@@ -103,7 +103,8 @@ def _geometry(args, frame):
 
 
 class _TimeSpan:
-    """The frames analysed, counted as they pass, for a figure's title."""
+    """The number of frames analysed and their first and last times, noted as they pass, for a
+    figure's title."""
 
     def __init__(self):
         self.count, self.first, self.last = 0, None, None
@@ -114,7 +115,7 @@ class _TimeSpan:
         self.last = frame.time
 
     def title(self, args):
-        """"t = 2.00 s", or "mean over t = 0-2 s (41 frames)"."""
+        """The title: t = 2.00 s for one frame, else mean over t = 0.00-2.00 s (41 frames)."""
         unit = " s" if args.timestep is not None else " (MD steps)"
         from .plotting import seconds_text as text
         if self.count == 1:

@@ -399,7 +399,8 @@ def iter_phases(frames, geometry, window=WINDOW, thresholds=None, which=None):
         held.append((k, frame))
         if wanted is None or k in wanted:
             pending.append((k, _window_start(t, t_first, window)))
-        # no window still to come starts before the first pending one, or than the current frame's
+        # the windows still to come start no earlier than the first pending one's (with none
+        # pending, than the current frame's): the frames before it are in none of them
         oldest = pending[0][1] if pending else _window_start(t, t_first, window)
         while held[0][1].time < oldest - _EDGE * window:
             rods.pop(held.popleft()[0], None)
