@@ -114,7 +114,7 @@ def compression_row(folder, settle):
             continue
         blocks = pressure[at & (time > time[at][0] + settle)]
         if blocks.size > 1:
-            row[f"P at {held:.2f}"] = f"{blocks.mean():.3f}+-{blocks.std(ddof=1) / np.sqrt(blocks.size):.3f}"
+            row[f"P at {held:.2f}"] = f"{blocks.mean():.4g}+-{blocks.std(ddof=1) / np.sqrt(blocks.size):.2g}"
     return row
 
 
