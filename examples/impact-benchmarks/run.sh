@@ -109,6 +109,21 @@ oblique() {   # oblique TEST LAWTAG LAW X-LIST VARS...
   run "$law" "$xs" "$@" | awk -v t="$test" -v l="$tag" '{ printf "%s %s %s %s %s %s\n", t, l, $1, $2, $3, $4 }'
 }
 
+# materials N MATERIAL: the material's variables for spheres 1 to N
+materials() { matvars 1 "$2"; [ "$1" = 1 ] || matvars 2 "$2"; }
+
+# both TEST X-LIST SPHERES MATERIAL SECOND VARS...: an oblique test for each law with MATERIAL and
+# (not --short; not the stick law, whose answer does not depend on the material) with SECOND, as LAW:SECOND
+both() {
+  local test=$1 xs=$2 n=$3 mat=$4 second=$5; shift 5
+  for law in $LAWS; do
+    # shellcheck disable=SC2046
+    oblique "$test" "$law" "$law" "$xs" "$@" $(materials "$n" "$mat")
+    [ $SHORT = yes ] || [ "$law" = stick ] || \
+      oblique "$test" "$law:$second" "$law" "$xs" "$@" $(materials "$n" "$second")
+  done
+}
+
 {
 for law in $LAWS; do
   [ -f "$HERE/law.$law" ] || { echo "run.sh: no law file law.$law" >&2; exit 2; }
@@ -151,43 +166,21 @@ done
 
 # Test 4: oblique impact on a plane at 3.9 m/s and incidence X (degrees from the normal)
 echo "# test4 sphere on a rigid plane R 0.0025 m, 3.9 m/s at incidence X, e 0.98, mu 0.092: aluminium-oxide, aluminium-alloy"
-for law in $LAWS; do
-  oblique test4 "$law" "$law" "$angles" -var target plane -var vary angle -var V 3.9 -var R1 0.0025 \
-    $(matvars 1 aluminium-oxide) -var e 0.98 -var mu 0.092
-  [ $SHORT = yes ] || [ "$law" = stick ] || \
-    oblique test4 "$law:aluminium-alloy" "$law" "$angles" -var target plane -var vary angle -var V 3.9 \
-      -var R1 0.0025 $(matvars 1 aluminium-alloy) -var e 0.98 -var mu 0.092
-done
+both test4 "$angles" 1 aluminium-oxide aluminium-alloy -var target plane -var vary angle -var V 3.9 -var R1 0.0025 \
+  -var e 0.98 -var mu 0.092
 
 # Test 5: oblique impact on a plane at normal velocity 5 m/s and tangential velocity X
 echo "# test5 sphere on a rigid plane R 1e-5 m, normal 5 m/s, tangential X m/s, e 1, mu 0.3: steel, polyethylene"
-for law in $LAWS; do
-  oblique test5 "$law" "$law" "$vts" -var target plane -var vary vt -var V 5 -var R1 1e-5 \
-    $(matvars 1 steel) -var e 1 -var mu 0.3
-  [ $SHORT = yes ] || [ "$law" = stick ] || \
-    oblique test5 "$law:polyethylene" "$law" "$vts" -var target plane -var vary vt -var V 5 -var R1 1e-5 \
-      $(matvars 1 polyethylene) -var e 1 -var mu 0.3
-done
+both test5 "$vts" 1 steel polyethylene -var target plane -var vary vt -var V 5 -var R1 1e-5 -var e 1 -var mu 0.3
 
 # Test 6: a spinning sphere on a plane, normal velocity 0.2 m/s, omegay X
 echo "# test6 sphere on a rigid plane R 0.1 m, normal 0.2 m/s, omegay X rad/s, e 0.5, mu 0.4: aluminium-alloy, nylon"
-for law in $LAWS; do
-  oblique test6 "$law" "$law" "$spins" -var target plane -var vary spin -var V 0.2 -var R1 0.1 \
-    $(matvars 1 aluminium-alloy) -var e 0.5 -var mu 0.4
-  [ $SHORT = yes ] || [ "$law" = stick ] || \
-    oblique test6 "$law:nylon" "$law" "$spins" -var target plane -var vary spin -var V 0.2 -var R1 0.1 \
-      $(matvars 1 nylon) -var e 0.5 -var mu 0.4
-done
+both test6 "$spins" 1 aluminium-alloy nylon -var target plane -var vary spin -var V 0.2 -var R1 0.1 -var e 0.5 -var mu 0.4
 
 # Test 7: two identical spheres, 0.2 m/s each, omegay X and -X
 echo "# test7 two identical spheres R 0.1 m, 0.2 m/s each, omegay X (sphere 1) and -X (sphere 2), e 0.5, mu 0.4: aluminium-alloy, copper"
-for law in $LAWS; do
-  oblique test7 "$law" "$law" "$spins" -var target sphere -var vary spin -var V 0.2 -var V2 0.2 -var spin2 -1 \
-    -var R1 0.1 -var R2 0.1 $(matvars 1 aluminium-alloy) $(matvars 2 aluminium-alloy) -var e 0.5 -var mu 0.4
-  [ $SHORT = yes ] || [ "$law" = stick ] || \
-    oblique test7 "$law:copper" "$law" "$spins" -var target sphere -var vary spin -var V 0.2 -var V2 0.2 \
-      -var spin2 -1 -var R1 0.1 -var R2 0.1 $(matvars 1 copper) $(matvars 2 copper) -var e 0.5 -var mu 0.4
-done
+both test7 "$spins" 2 aluminium-alloy copper -var target sphere -var vary spin -var V 0.2 -var V2 0.2 -var spin2 -1 \
+  -var R1 0.1 -var R2 0.1 -var e 0.5 -var mu 0.4
 
 # Test 8: a spinning sphere (R 0.1 m, 0.2 m/s) on a sphere of R 0.5 m at rest, omegay X
 echo "# test8 sphere R 0.1 m at 0.2 m/s, omegay X, on a sphere R 0.5 m at rest, e 0.5, mu 0.4: aluminium-alloy on aluminium-alloy-x1000 (E, density x 1000); variant equal-density: on aluminium-alloy"
