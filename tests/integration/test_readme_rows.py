@@ -39,8 +39,9 @@ README_ROWS = table_rows(README, "## What it reproduces")
 
 
 def test_every_status_follows_the_rules():
-    for ours, status in (row for rows in summary_by_section().values() for row in rows):
-        assert status.startswith(STATUSES), status
+    for rows in summary_by_section().values():
+        for _ours, status in rows:
+            assert status.startswith(STATUSES), status
 
 
 @pytest.mark.parametrize("row", README_ROWS, ids=[r[0][:40] for r in README_ROWS])
