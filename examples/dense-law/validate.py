@@ -23,7 +23,9 @@ Usage, from the repository root (hours of one core per side at the paper's lengt
     /usr/bin/python3 examples/dense-law/validate.py condensate --base ../ag-57e4d5b --out RUN --time 100 --seeds 1 2 3
     /usr/bin/python3 examples/dense-law/validate.py formation --base ../ag-57e4d5b --out RUN --time 450
     /usr/bin/python3 examples/dense-law/validate.py compression --base ../ag-57e4d5b --out RUN --hold 10
---quick runs 2 s each (checks the script).
+--quick runs 2 s each (checks the script). --ours-var resting newton runs that law on our side;
+--ours-lmp a frozen copy of our LAMMPS while the checkout is rebuilt; --totals 0.80 0.82 the
+compression's totals only (in.compress's cell jams between 0.82 and 0.84).
 """
 import argparse
 import concurrent.futures
@@ -46,7 +48,7 @@ def lmp_of(checkout):
     return str(pathlib.Path(checkout).resolve() / "build" / "lmp")
 
 
-def run(side, checkout, deck_vars, out, seed, start, time):
+def run(side, lmp, checkout, deck_vars, out, seed, start, time):
     """One run of in.channel-small in its checkout's examples/channel (time: simulated seconds
     from start), or of our in.compress with this side's build (time None); returns its folder."""
     folder = pathlib.Path(out) / f"{side}-seed{seed}"
@@ -54,7 +56,7 @@ def run(side, checkout, deck_vars, out, seed, start, time):
     if log.exists() and "Total wall time" in log.read_text():
         return folder
     folder.mkdir(parents=True, exist_ok=True)
-    args = [lmp_of(checkout), "-var", "out", str(folder.resolve()), "-var", "seed", str(seed),
+    args = [lmp, "-var", "out", str(folder.resolve()), "-var", "seed", str(seed),
             "-log", str(log.resolve())]
     if time is None:
         args += ["-in", "in.compress"]
@@ -63,8 +65,8 @@ def run(side, checkout, deck_vars, out, seed, start, time):
         args += ["-in", "in.channel-small", "-var", "time", repr(start + time), "-var", "dump", "1.0"]
         args += ["-var", "from", STATE] if start > 0 else []
         cwd = pathlib.Path(checkout) / "examples" / "channel"
-    for name, value in deck_vars:
-        args += ["-var", name, value]
+    for name, *values in deck_vars:
+        args += ["-var", name, *values]
     with open(folder / "screen.txt", "w") as screen:
         subprocess.run(args, cwd=cwd, stdout=screen, stderr=subprocess.STDOUT, check=True)
     return folder
@@ -127,7 +129,10 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, nargs="+")
     ap.add_argument("--ours-var", nargs=2, action="append", metavar=("NAME", "VALUE"),
                     help="a deck variable of our side, repeatable (default: resting yes)")
+    ap.add_argument("--ours-lmp", help="our side's LAMMPS (default: this checkout's build/lmp), e.g. a frozen "
+                    "copy while the checkout is rebuilt")
     ap.add_argument("--sides", nargs="+", choices=["ours", "base"], default=["ours", "base"])
+    ap.add_argument("--totals", nargs="+", help="compression: the area fractions (default in.compress's)")
     ap.add_argument("--hold", type=float, default=10.0, help="compression: seconds at each total")
     ap.add_argument("--settle", type=float, default=2.0, help="compression: seconds of each hold left out")
     ap.add_argument("--jobs", type=int, default=2)
@@ -139,15 +144,17 @@ def main(argv=None):
     ours_vars = args.ours_var or [("resting", "yes")]
     start = STATE_TIME if condensate else 0.0
     sides = {side: checkout for side, checkout in
-             {"ours": (ROOT, ours_vars), "base": (pathlib.Path(args.base), [])}.items() if side in args.sides}
+             {"ours": (args.ours_lmp or lmp_of(ROOT), ROOT, ours_vars),
+              "base": (lmp_of(args.base), pathlib.Path(args.base), [])}.items() if side in args.sides}
     if compression:
         compress_vars = ([("hold", "0.2"), ("ramp", "0.05"), ("block", "0.05"), ("totals", "0.80")]
                          if args.quick else [("hold", repr(args.hold)), ("ramp", "2.0"), ("block", "0.5")])
-        sides = {side: (checkout, deck_vars + compress_vars) for side, (checkout, deck_vars) in sides.items()}
+        compress_vars += [("totals", *args.totals)] if args.totals and not args.quick else []
+        sides = {side: (lmp, checkout, deck_vars + compress_vars) for side, (lmp, checkout, deck_vars) in sides.items()}
         time = None
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        jobs = {(side, seed): pool.submit(run, side, checkout, deck_vars, args.out, seed, start, time)
-                for side, (checkout, deck_vars) in sides.items() for seed in seeds}
+        jobs = {(side, seed): pool.submit(run, side, lmp, checkout, deck_vars, args.out, seed, start, time)
+                for side, (lmp, checkout, deck_vars) in sides.items() for seed in seeds}
         folders = {key: job.result() for key, job in jobs.items()}
     settle = 0.05 if args.quick else args.settle
     row_of = ((lambda folder: compression_row(folder, settle)) if compression else

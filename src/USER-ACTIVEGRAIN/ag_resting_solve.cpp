@@ -10,6 +10,9 @@ namespace {
 // Over-relaxation of the normal impulses: faster convergence up to oscillation near 2.
 constexpr double RELAXATION = 1.7;
 
+// The largest velocity change a converged sweep asks of a contact.
+double converged_speed(const SolverSettings &settings) { return settings.resting_tolerance * settings.resting_speed; }
+
 }    // namespace
 
 void RestingSolve::resize(std::size_t num_bodies) { body_colours.resize(num_bodies); }
@@ -17,23 +20,32 @@ void RestingSolve::resize(std::size_t num_bodies) { body_colours.resize(num_bodi
 int RestingSolve::solve(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
                         const std::vector<int> &island, const SolverSettings &settings)
 {
-  prepare(bodies, contacts, island);
-  const double converged = settings.resting_tolerance * settings.resting_speed;
-  int sweeps = 0;
-  bool done = false;
-  while (!done && sweeps < settings.max_resting_sweeps) {
-    ++sweeps;
-    done = sweep() <= converged * converged;
+  prepare(bodies, contacts, island, settings);
+  int sweeps = sweeps_to_tolerance(settings);
+  if (collisions) {
+    keep_plastic_solution();
+    expand();
+    const int more = sweeps_to_tolerance(settings);
+    sweeps = sweeps < 0 || more < 0 ? -1 : sweeps + more;
+    blend_within_no_energy_gain();
   }
   store();
-  return done ? sweeps : -1;
+  return sweeps;
+}
+
+int RestingSolve::sweeps_to_tolerance(const SolverSettings &settings)
+{
+  const double converged = converged_speed(settings);
+  for (int sweeps = 1; sweeps <= settings.max_resting_sweeps; ++sweeps)
+    if (sweep() <= converged * converged) return sweeps;
+  return -1;
 }
 
 // The contacts in the order of their keys, coloured greedily so that no two of one colour share
 // a movable body: the contacts of a colour are then independent, and a sweep over the colours is
 // the same in any order the contacts came in.
 void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
-                           const std::vector<int> &island)
+                           const std::vector<int> &island, const SolverSettings &settings)
 {
   solver_bodies = &bodies;
   solver_contacts = &contacts;
@@ -62,6 +74,7 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
   sweep_order = by_key;
   std::stable_sort(sweep_order.begin(), sweep_order.end(), [&](int a, int b) { return colour_of[a] < colour_of[b]; });
   rows.resize(n);
+  collisions = false;
   for (std::size_t i = 0; i < n; ++i) {
     const int k = sweep_order[i];
     const SolverContact &c = contact(k);
@@ -74,7 +87,16 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.gain = c.gain;
     row.n = c.n;
     row.plane = c.tangential.plane();
-    row.target = std::max(0.0, c.min_separation);
+    // With restitution the overlaps are opened after (ContactSolver::separate_overlaps()): an
+    // overlap's push is no part of the compression that the expansion gives back.
+    row.target = settings.resting_restitution ? 0.0 : std::max(0.0, c.min_separation);
+    row.before = relative_velocity(bodies, c);
+    // Faster than its gain makes it, beyond what the last solve's tolerance leaves: a collision.
+    const double settling = settings.resting_gain * std::fabs(dot(c.gain, c.n)) + converged_speed(settings);
+    const bool collides = settings.resting_restitution && -dot(row.before, c.n) > settling;
+    row.restitution = collides ? c.material.e : 0.0;
+    row.floor = 0.0;
+    collisions = collisions || row.restitution > 0.0;
     row.normal_mass = 1.0 / c.knn;
     row.mu = c.material.mu;
     row.kn = c.K * c.n;
@@ -83,15 +105,23 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.normal = row.tangent1 = row.tangent2 = 0.0;
     row.with_next = i + 1 < n && colour_of[sweep_order[i + 1]] == colour_of[k];
   }
+  if (!collisions) return;
+  island_bodies.clear();
+  for (const Row &row : rows)
+    for (int b : {row.body1, row.body2})
+      if (!bodies[b].is_static()) island_bodies.push_back(b);
+  std::sort(island_bodies.begin(), island_bodies.end());
+  island_bodies.erase(std::unique(island_bodies.begin(), island_bodies.end()), island_bodies.end());
 }
 
-// The normal impulse that makes the contact leave at its target (never pulling, over-relaxed),
+// The normal impulse that makes the contact leave at its target (never pulling, nor below its
+// floor; over-relaxed),
 // then the friction that stops its slip within mu times it. A contact that stays open and
 // carried nothing has nothing to do (zero).
 Vec3 RestingSolve::row_impulse(Row &row, const Vec3 &u, double &asked2)
 {
   const double asked = (row.target - dot(u, row.n)) * row.normal_mass;
-  const double pn = std::max(0.0, row.normal + RELAXATION * asked);
+  const double pn = std::max(row.floor, row.normal + RELAXATION * asked);
   if (pn == 0.0 && row.normal == 0.0) {
     asked2 = 0.0;
     return Vec3();
@@ -109,7 +139,7 @@ Vec3 RestingSolve::row_impulse(Row &row, const Vec3 &u, double &asked2)
     pt2 *= scale;
   }
   const double dt1 = pt1 - row.tangent1, dt2 = pt2 - row.tangent2;
-  asked2 = norm2(row.kn * std::max(-row.normal, asked) + row.kt1 * dt1 + row.kt2 * dt2);
+  asked2 = norm2(row.kn * std::max(row.floor - row.normal, asked) + row.kt1 * dt1 + row.kt2 * dt2);
   row.normal = pn;
   row.tangent1 = pt1;
   row.tangent2 = pt2;
@@ -144,11 +174,79 @@ double RestingSolve::sweep()
   return largest;
 }
 
+void RestingSolve::keep_plastic_solution()
+{
+  const std::vector<RigidBodyState> &bodies = *solver_bodies;
+  plastic_v.resize(island_bodies.size());
+  plastic_omega.resize(island_bodies.size());
+  for (std::size_t i = 0; i < island_bodies.size(); ++i) {
+    plastic_v[i] = bodies[island_bodies[i]].v;
+    plastic_omega[i] = bodies[island_bodies[i]].omega;
+  }
+  plastic_impulse.resize(rows.size());
+  plastic_after.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    plastic_impulse[i] = {rows[i].normal, rows[i].tangent1, rows[i].tangent2};
+    plastic_after[i] = relative_velocity(bodies, rows[i]);
+  }
+}
+
+// Poisson's expansion: each colliding contact gets e times its compression's normal impulse
+// again, which its normal impulse then keeps as a floor while the sweeps that follow stop the
+// contacts this makes approach and the slips it starts (friction within mu times the whole).
+void RestingSolve::expand()
+{
+  std::vector<RigidBodyState> &bodies = *solver_bodies;
+  for (Row &row : rows) {
+    const double expansion = row.restitution * row.normal;
+    row.normal += expansion;
+    row.floor = row.normal;
+    if (expansion > 0.0) apply_impulse(bodies, row, row.n * expansion);
+  }
+}
+
+// Impulses and velocities are linear in a blend s of the plastic solution (0) and the one with
+// restitution (1), and both are feasible (each contact leaves at its target or faster; each
+// impulse in its cone), so every blend is; the energy change is quadratic in s, plastic + s a +
+// s^2 b: the largest s <= 1 at which it gains no energy (the plastic solve's change is <= 0 up
+// to its tolerance, and then the bound).
+void RestingSolve::blend_within_no_energy_gain()
+{
+  std::vector<RigidBodyState> &bodies = *solver_bodies;
+  double plastic_change = 0.0, a = 0.0, b = 0.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row &row = rows[i];
+    const RowImpulse &p = plastic_impulse[i];
+    const Vec3 plastic = row.n * p.normal + row.plane.tangent1 * p.tangent1 + row.plane.tangent2 * p.tangent2;
+    const Vec3 dJ = row_impulse_sum(row) - plastic, du = relative_velocity(bodies, row) - plastic_after[i];
+    plastic_change += 0.5 * dot(plastic, row.before + plastic_after[i]);
+    a += 0.5 * (dot(dJ, row.before + plastic_after[i]) + dot(plastic, du));
+    b += 0.5 * dot(dJ, du);
+  }
+  const double room = std::max(0.0, -plastic_change);    // s a + s^2 b <= room: no gain in all
+  if (a + b <= room) return;
+  const double root = std::sqrt(std::max(0.0, a * a + 4.0 * b * room));
+  double s = b > 0.0 ? (root - a) / (2.0 * b) : b < 0.0 ? 2.0 * room / (a + root) : room / a;
+  s = std::min(1.0, std::max(0.0, s));
+  for (std::size_t i = 0; i < island_bodies.size(); ++i) {
+    RigidBodyState &body = bodies[island_bodies[i]];
+    body.v = plastic_v[i] + (body.v - plastic_v[i]) * s;
+    body.omega = plastic_omega[i] + (body.omega - plastic_omega[i]) * s;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    Row &row = rows[i];
+    const RowImpulse &p = plastic_impulse[i];
+    row.normal = p.normal + (row.normal - p.normal) * s;
+    row.tangent1 = p.tangent1 + (row.tangent1 - p.tangent1) * s;
+    row.tangent2 = p.tangent2 + (row.tangent2 - p.tangent2) * s;
+  }
+}
+
 void RestingSolve::store()
 {
   for (const Row &row : rows) {
     SolverContact &c = contact(row.contact);
-    const Vec3 resting = row.n * row.normal + row.plane.tangent1 * row.tangent1 + row.plane.tangent2 * row.tangent2;
+    const Vec3 resting = row_impulse_sum(row);
     c.impulse += resting;
     c.late += resting * c.time;
   }

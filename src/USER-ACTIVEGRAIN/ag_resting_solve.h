@@ -15,6 +15,21 @@
 // colours in turn, and its result does not depend on the order in which the contacts came, bit
 // for bit. Sweeps stop once none changes a contact's velocity by more than
 // SolverSettings::resting_tolerance of the resting speed.
+//
+// With SolverSettings::resting_restitution a contact that approaches faster than its gain makes
+// it (a collision, not a body settling under gravity) keeps its restitution, as Poisson's
+// hypothesis has it: after the plastic solve (the compression), each such contact gets e times
+// its normal impulse again (the expansion), and its normal impulse keeps that floor while further
+// sweeps stop the approaches and slips the expansion starts. (Newton's law, leaving at e times the
+// approach, has no solution in a jammed packing.) With restitutions that differ between contacts
+// the expansion can gain energy, so the solve measures what its impulses change, sum
+// J . (u_before + u_after) / 2 over its contacts (the kinetic energy in the walls' frames), and
+// takes the blend with the plastic solution (feasible, as both are) closest to the expanded one
+// that gains no energy. Overlaps are left to the contact solver's overlap correction, after this
+// solve (their push is no part of a compression to give back). A plate
+// accelerating into a body it touches is a collision (a contact's gain holds a wall's
+// acceleration only until the contact closes): the body leaves at e times that approach, as
+// from a compliant impact.
 #pragma once
 
 #include "ag_solver_contact.h"
@@ -37,8 +52,12 @@ class RestingSolve {
  private:
   // The stages of solve().
   void prepare(std::vector<RigidBodyState> &bodies, std::vector<SolverContact> &contacts,
-               const std::vector<int> &island);
+               const std::vector<int> &island, const SolverSettings &settings);
+  int sweeps_to_tolerance(const SolverSettings &settings);    // -1: stopped at the cap
   double sweep();    // the square of the largest velocity change a contact asked for
+  void keep_plastic_solution();
+  void expand();
+  void blend_within_no_energy_gain();
   void store();
 
   // What a sweep needs of an island contact, in sweep order and in one place: its bodies and
@@ -48,7 +67,10 @@ class RestingSolve {
     int contact, body1, body2;    // island contact (index into island_contacts)
     Vec3 r1, r2, gain, n;
     TangentPlane plane;
-    double target, normal_mass, mu;    // max(0, min separation), 1 / n.K.n, friction
+    double target, normal_mass, mu;    // max(0, min separation) or 0, 1 / n.K.n, friction
+    double restitution;                // kept in a collision (Poisson's), else 0
+    double floor;                      // the least normal impulse (after the expansion)
+    Vec3 before;                       // relative velocity at the start
     Vec3 kn, kt1, kt2;                 // K n, K t1, K t2
     double normal = 0.0, tangent1 = 0.0, tangent2 = 0.0;
     bool with_next = false;    // the next row has the same colour: no movable body in common
@@ -65,6 +87,19 @@ class RestingSolve {
   std::vector<int> colour_of;
   std::vector<int> by_key, sweep_order;    // island contacts by key, and colour by colour
   std::vector<std::vector<int>> body_colours;    // per body: the colours of its contacts so far
+  // With collisions: the island's movable bodies, and the plastic solution's velocities, row
+  // impulses and relative velocities after.
+  bool collisions = false;    // a row keeps restitution
+  std::vector<int> island_bodies;
+  std::vector<Vec3> plastic_v, plastic_omega, plastic_after;
+  struct RowImpulse {
+    double normal, tangent1, tangent2;
+  };
+  std::vector<RowImpulse> plastic_impulse;
+  Vec3 row_impulse_sum(const Row &row) const
+  {
+    return row.n * row.normal + row.plane.tangent1 * row.tangent1 + row.plane.tangent2 * row.tangent2;
+  }
 
   SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }
 };

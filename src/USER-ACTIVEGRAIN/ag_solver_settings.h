@@ -36,6 +36,11 @@ struct SolverSettings {
   // give within a step (resting_gain times that).
   double resting_speed = 0.0;
   bool resting_from_acceleration = false;
+  // The resting solve keeps the restitution of every contact that approaches faster than
+  // resting_gain times its gain (a collision in the plane, not a body settling under gravity), as
+  // Newton's law at the velocity level; false: every resting contact is plastic. Either way it
+  // gains no more energy than the plastic solve of the same contacts (ag_resting_solve.h).
+  bool resting_restitution = false;
   // The resting solve's sweeps stop once none changes a contact's velocity by more than this
   // fraction of resting_speed, or after max_resting_sweeps. It also bounds how much slower than
   // its minimum separation velocity an overlap of a resting-solved island opens.

@@ -13,7 +13,7 @@ using namespace LAMMPS_NS;
 static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution). The resting speed is stored as RESTING_AUTO for resting yes.
-static constexpr int RESTART_FORMAT = -5;
+static constexpr int RESTART_FORMAT = -6;
 static constexpr double RESTING_AUTO = -1.0;
 
 void GranImpulseSettings::parse(LAMMPS *lmp, const char *style, int narg, char **arg)
@@ -46,10 +46,12 @@ void GranImpulseSettings::parse(LAMMPS *lmp, const char *style, int narg, char *
       else if (value == "reverse") order = ContactOrder::REVERSE;
       else error->all(FLERR, "{}: order must be shuffle, tag or reverse (found {})", style, value);
     } else if (key == "resting") {
-      solver.resting_from_acceleration = value == "yes";
-      solver.resting_speed = value == "yes" || value == "no" ? 0.0 : utils::numeric(FLERR, value, false, lmp);
+      const bool named = value == "yes" || value == "no" || value == "newton";
+      solver.resting_from_acceleration = value == "yes" || value == "newton";
+      solver.resting_restitution = value == "newton";
+      solver.resting_speed = named ? 0.0 : utils::numeric(FLERR, value, false, lmp);
       if (!(solver.resting_speed >= 0.0))
-        error->all(FLERR, "{}: resting must be yes, no or a speed >= 0 (found {})", style, value);
+        error->all(FLERR, "{}: resting must be yes, newton, no or a speed >= 0 (found {})", style, value);
     } else if (key == "tolerance") {
       solver.resting_tolerance = utils::numeric(FLERR, value, false, lmp);
       if (!(solver.resting_tolerance > 0.0 && solver.resting_tolerance < 1.0))
@@ -70,7 +72,7 @@ void GranImpulseSettings::parse(LAMMPS *lmp, const char *style, int narg, char *
 
 // A negative format number first (files of the first format begin with the resolution, which is
 // positive), then resolution, beta, order, the window, resting, the resting solve's tolerance,
-// the slop and the resting solve's sweep cap.
+// the slop, the resting solve's sweep cap and whether it keeps restitution.
 void GranImpulseSettings::write_restart(FILE *fp) const
 {
   const int order_code = static_cast<int>(order);
@@ -84,13 +86,15 @@ void GranImpulseSettings::write_restart(FILE *fp) const
   fwrite(&solver.resting_tolerance, sizeof(double), 1, fp);
   fwrite(&slop, sizeof(double), 1, fp);
   fwrite(&solver.max_resting_sweeps, sizeof(int), 1, fp);
+  const int restitution = solver.resting_restitution ? 1 : 0;
+  fwrite(&restitution, sizeof(int), 1, fp);
 }
 
 void GranImpulseSettings::read_restart(LAMMPS *lmp, const char *style, FILE *fp)
 {
   Error *error = lmp->error;
   *this = GranImpulseSettings();
-  int order_code = 0;
+  int order_code = 0, restitution = 0;
   double resting = 0.0;
   if (lmp->comm->me == 0) {
     int format = 0;
@@ -107,6 +111,7 @@ void GranImpulseSettings::read_restart(LAMMPS *lmp, const char *style, FILE *fp)
       utils::sfread(FLERR, &slop, sizeof(double), 1, fp, nullptr, error);
       utils::sfread(FLERR, &solver.max_resting_sweeps, sizeof(int), 1, fp, nullptr, error);
     }
+    if (format < -5) utils::sfread(FLERR, &restitution, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Comm world = lmp->world;
   MPI_Bcast(&solver.resolution, 1, MPI_INT, 0, world);
@@ -117,7 +122,9 @@ void GranImpulseSettings::read_restart(LAMMPS *lmp, const char *style, FILE *fp)
   MPI_Bcast(&resting, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&solver.resting_tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&solver.max_resting_sweeps, 1, MPI_INT, 0, world);
+  MPI_Bcast(&restitution, 1, MPI_INT, 0, world);
   order = static_cast<ContactOrder>(order_code);
   solver.resting_from_acceleration = resting == RESTING_AUTO;
   solver.resting_speed = solver.resting_from_acceleration ? 0.0 : resting;
+  solver.resting_restitution = restitution != 0;
 }

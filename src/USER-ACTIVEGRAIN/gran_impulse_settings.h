@@ -18,7 +18,7 @@ struct GranImpulseSettings {
   ContactOrder order = ContactOrder::SHUFFLE;
 
   // pair_style gran/impulse [resolution N] [beta B] [slop S] [order shuffle|tag|reverse]
-  // [window W|step] [resting yes|no|V] [tolerance T] [max_sweeps N]; every setting not given
+  // [window W|step] [resting yes|newton|no|V] [tolerance T] [max_sweeps N]; every setting not given
   // takes its default. An ERROR naming the style and keyword for a value out of its range.
   void parse(LAMMPS *lmp, const char *style, int narg, char **arg);
   void write_restart(FILE *fp) const;

@@ -171,7 +171,7 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
   EXPECT_NE(error_of("pair_style gran/impulse window").find("missing value after keyword window"),
             std::string::npos);
   // A negative speed (which restart files use for resting yes) is no resting speed.
-  EXPECT_NE(error_of("pair_style gran/impulse resting -1").find("resting must be yes, no or a speed >= 0"),
+  EXPECT_NE(error_of("pair_style gran/impulse resting -1").find("resting must be yes, newton, no or a speed >= 0"),
             std::string::npos);
   command(PAIR);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),

@@ -38,9 +38,10 @@ class RestingContacts : public LammpsTest {
   {
     return std::string("test_resting_contacts_") + ::testing::UnitTest::GetInstance()->current_test_info()->name();
   }
-  static std::string resting()
+  std::string law = "yes";    // pair gran/impulse's resting
+  std::string resting() const
   {
-    return "variable resting index yes\nvariable out index " + out_folder() +
+    return "variable resting index " + law + "\nvariable out index " + out_folder() +
         "\nvariable create_dir index " ACTIVEGRAIN_SOURCE_DIR "/examples/rods-and-beads\n"
         "include ${create_dir}/in.create\ntimestep 1e-4\n";
   }
@@ -65,7 +66,7 @@ class RestingContacts : public LammpsTest {
   {
     command(packing + resting() +
             // the same style again: new settings, the same coefficients
-            "pair_style gran/impulse resolution ${resolution} window ${window} resting yes order " + order +
+            "pair_style gran/impulse resolution ${resolution} window ${window} resting " + law + " order " + order +
             "\ncompute solver all pair gran/impulse\n"
             "variable sweeps equal c_solver[" + std::to_string(LAMMPS_NS::PairGranImpulse::RESTING_SWEEPS + 1) +
             "]\nthermo_style custom step v_sweeps\nthermo 1\nrun 0 post no");
@@ -142,6 +143,31 @@ TEST_F(RestingContacts, TheJammedCornerContinuesFromARestartFileToRoundOff)
   std::printf("[ measured ] the jammed corner, a step after a restart file: largest velocity difference %.3g m/s\n",
               largest);
   EXPECT_LT(largest, 1e-15);
+}
+
+TEST_F(RestingContacts, WithRestingNewtonTheJammedCornersVelocitiesDoNotDependOnContactOrder)
+{
+  // The same with the restitution of collisions kept (Poisson's expansion and its energy bound).
+  law = "newton";
+  expect_the_same_velocities_in_every_order(std::string(JAMMED_CELL) + JAMMED_STATE, "the jammed corner, newton", 50);
+}
+
+TEST_F(RestingContacts, WithRestingNewtonTheJammedCornerContinuesFromARestartFileToRoundOff)
+{
+  // As above, with the restitution of collisions kept.
+  law = "newton";
+  command(std::string(JAMMED_CELL) + JAMMED_STATE + resting() +
+          "run 20 post no\nwrite_restart test_resting_contacts_newton.restart\nrun 1 post no");
+  const Velocities straight = velocities();
+  fresh_lammps();
+  command(std::string(JAMMED_CELL) + "variable continue index test_resting_contacts_newton.restart\n" + resting() +
+          "run 1 post no");
+  const double largest = largest_difference(straight, velocities());
+  std::printf("[ measured ] the jammed corner, newton, a step after a restart file: largest velocity difference "
+              "%.3g m/s\n", largest);
+  // The rods' round-off on reading the file, grown by the overlap correction's Jacobi sweeps (as
+  // without resting): 1e-14 of the fastest velocity, 0.1 m/s.
+  EXPECT_LT(largest, 1e-14);
 }
 
 class RestingRing : public BeadBox {
@@ -261,4 +287,55 @@ TEST_F(RestingPile, TheSlopTravelsInRestartFiles)
               "%.6g restarted without slop\n", straight, restarted, without_slop);
   EXPECT_NEAR(restarted, straight, 1e-12);
   EXPECT_GT(std::fabs(without_slop - straight), 1e-9);
+}
+
+class RestingCollision : public BeadBox {
+ protected:
+  // Two beads resting on a still frictionless plate under gravity (each touching it: one island)
+  // meet head-on at 1.5 mm/s, slower than resting yes's speed (2 dt g = 2 mm/s at dt 1e-4); the
+  // separation velocity along x once they have met.
+  double separation_after_meeting(const std::string &resting, bool through_a_restart = false)
+  {
+    bead(0.003, 0.005, 0.0005, 0.00075, 0, 0);
+    bead(0.0040001, 0.005, 0.0005, -0.00075, 0, 0);
+    const std::string styles = "timestep 1e-4\nfix nve all nve/sphere\nfix g all gravity 9.81 vector 0 0 -1\n"
+                               "fix plate all wall/impulse zlo 0.0 e 0.3 mu 0.0\n";
+    command("pair_style gran/impulse resting " + resting + "\npair_coeff * * 0.3 0.0\n" + styles);
+    if (through_a_restart) {
+      command("run 0 post no\nwrite_restart test_resting_collision.restart");
+      LammpsTest::TearDown();
+      LammpsTest::SetUp();
+      command("read_restart test_resting_collision.restart\ncomm_modify vel yes\nneighbor 0.0002 bin\n" + styles);
+    }
+    command("run 3 post no");    // half of a step's impulse acts in the next step
+    return value("vx[2]") - value("vx[1]");
+  }
+};
+
+TEST_F(RestingCollision, RestingNewtonKeepsTheRestitutionOfASlowCollisionAlsoAfterARestart)
+{
+  // Resting yes ends the collision without rebound (the beads leave at what the overlap
+  // correction gives their first step's overlap of 0.05 um); resting newton leaves at e = 0.3
+  // times the approach, as resting no's impact does, also when read back from a restart file
+  // (where the setting travels: the plastic default would stop it).
+  const double approach = 0.0015, tolerance = 1.3 * 0.01 * 2 * 9.81 * 1e-4;
+  const double plastic = separation_after_meeting("yes");
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command(BOX);
+  const double newton = separation_after_meeting("newton");
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command(BOX);
+  const double restarted = separation_after_meeting("newton", true);
+  LammpsTest::TearDown();
+  LammpsTest::SetUp();
+  command(BOX);
+  const double impact = separation_after_meeting("no");
+  std::printf("[ measured ] separation over approach: resting yes %.4f, newton %.4f, newton restarted %.4f, no %.4f\n",
+              plastic / approach, newton / approach, restarted / approach, impact / approach);
+  EXPECT_LT(plastic, 0.1 * approach);    // the overlap correction's push of the first step's overlap
+  EXPECT_NEAR(newton, 0.3 * approach, tolerance);
+  EXPECT_NEAR(restarted, newton, 1e-15);
+  EXPECT_NEAR(impact, 0.3 * approach, 1e-3 * approach);
 }
