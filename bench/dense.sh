@@ -7,6 +7,7 @@
 # one (1 rank, LAMMPS's loop time), with pair gran/impulse:
 #   impacts   resting no (every contact through the compliant impacts)
 #   resting   resting yes (resting contacts solved together: docs/pair_gran_impulse.rst)
+#   newton    resting newton (the same, keeping the restitution of collisions)
 #   base      another build's plugin, e.g. an earlier commit (BASE: its checkout with build/),
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
@@ -52,12 +53,15 @@ warm_deck() {
       -var phi_r $phi_r -var resting yes -var dump 1.0 -var out "$work/out-warm" -echo none "$@" >/dev/null 2>&1)
 }
 cost() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v n="$n" 'BEGIN{printf "%.4g", t/(s*n)*1e6}'; }
-mkdir -p "$work"/out-{impacts,resting,base,warm}
+mkdir -p "$work"/out-{impacts,resting,newton,base,warm}
 
-sides=(impacts resting); [ -n "$base" ] && sides+=(base)
+sides=(impacts resting newton); [ -n "$base" ] && sides+=(base)
 lmp_of() { case $1 in base) echo "$base/build/lmp" ;; *) echo "$ours" ;; esac; }
 dir_of() { case $1 in base) echo "$base/examples/channel" ;; *) echo "$here/../examples/channel" ;; esac; }
-args_of() { case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; base) echo "${BASE_ARGS:-}" ;; esac; }
+args_of() {
+  case $1 in impacts) echo "-var resting no" ;; resting) echo "-var resting yes" ;; newton) echo "-var resting newton" ;;
+    base) echo "${BASE_ARGS:-}" ;; esac
+}
 
 echo "# $(date -u +%F) TIME $time s after WARM $warm s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 declare -A fluid
@@ -95,9 +99,13 @@ for phi_b in "${phis[@]}"; do
         -var from "$state" $(args_of $side)
     c=$(cost "$log")
     [ "$side" = resting ] && densest=$c
+    [ "$side" = newton ] && densest_newton=$c
     printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.1f", a/b}')"
   done
   echo
 done
-# the cost of the densest packing with resting yes over the deck's default fluid (resting no)
-echo "# densest (resting yes) over the default fluid (resting no): $(awk -v a="$densest" -v b="${fluid[impacts]}" 'BEGIN{printf "%.2f", a/b}')"
+# the cost of the densest packing with resting yes and newton over the deck's default fluid (resting no)
+for law in yes newton; do
+  c=$densest; [ $law = newton ] && c=$densest_newton
+  echo "# densest (resting $law) over the default fluid (resting no): $(awk -v a="$c" -v b="${fluid[impacts]}" 'BEGIN{printf "%.2f", a/b}')"
+done

@@ -331,8 +331,8 @@ ContactSolver::Result ContactSolver::solve(const Settings &settings)
     const std::vector<int> &island = islands[k];
     const int substeps = settings.resting_speed > 0.0 ? solve_impacts_then_resting(island, settings, result)
                                                       : solve_island(island, settings);
-    const bool overlaps_opened = settings.resting_speed > 0.0 && !settings.resting_restitution;
-    const double shortfall = overlaps_opened ? overlap_shortfall(island, settings) : separate_overlaps(island, settings);
+    const double shortfall = settings.resting_speed > 0.0 ? overlap_shortfall(island, settings)
+                                                          : separate_overlaps(island, settings);
     result.substeps = std::max(result.substeps, substeps < 0 ? settings.max_substeps : substeps);
     result.shortfall = std::max(result.shortfall, shortfall);
     result.converged = result.converged && substeps >= 0;

@@ -23,11 +23,11 @@ int RestingSolve::solve(std::vector<RigidBodyState> &bodies, std::vector<SolverC
   prepare(bodies, contacts, island, settings);
   int sweeps = sweeps_to_tolerance(settings);
   if (collisions) {
-    keep_plastic_solution();
+    keep_compression();
     expand();
     const int more = sweeps_to_tolerance(settings);
     sweeps = sweeps < 0 || more < 0 ? -1 : sweeps + more;
-    blend_within_no_energy_gain();
+    blend_within_overlap_credit();
   }
   store();
   return sweeps;
@@ -87,9 +87,7 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.gain = c.gain;
     row.n = c.n;
     row.plane = c.tangential.plane();
-    // With restitution the overlaps are opened after (ContactSolver::separate_overlaps()): an
-    // overlap's push is no part of the compression that the expansion gives back.
-    row.target = settings.resting_restitution ? 0.0 : std::max(0.0, c.min_separation);
+    row.target = row.overlap_target = std::max(0.0, c.min_separation);
     row.before = relative_velocity(bodies, c);
     // Faster than its gain makes it, beyond what the last solve's tolerance leaves: a collision.
     const double settling = settings.resting_gain * std::fabs(dot(c.gain, c.n)) + converged_speed(settings);
@@ -106,6 +104,9 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.with_next = i + 1 < n && colour_of[sweep_order[i + 1]] == colour_of[k];
   }
   if (!collisions) return;
+  // An overlap's push is no part of the compression that the expansion gives back: the
+  // compression stops the approaches, the sweeps after the expansion open the overlaps.
+  for (Row &row : rows) row.target = 0.0;
   island_bodies.clear();
   for (const Row &row : rows)
     for (int b : {row.body1, row.body2})
@@ -174,20 +175,20 @@ double RestingSolve::sweep()
   return largest;
 }
 
-void RestingSolve::keep_plastic_solution()
+void RestingSolve::keep_compression()
 {
   const std::vector<RigidBodyState> &bodies = *solver_bodies;
-  plastic_v.resize(island_bodies.size());
-  plastic_omega.resize(island_bodies.size());
+  compression_v.resize(island_bodies.size());
+  compression_omega.resize(island_bodies.size());
   for (std::size_t i = 0; i < island_bodies.size(); ++i) {
-    plastic_v[i] = bodies[island_bodies[i]].v;
-    plastic_omega[i] = bodies[island_bodies[i]].omega;
+    compression_v[i] = bodies[island_bodies[i]].v;
+    compression_omega[i] = bodies[island_bodies[i]].omega;
   }
-  plastic_impulse.resize(rows.size());
-  plastic_after.resize(rows.size());
+  compression_impulse.resize(rows.size());
+  compression_after.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    plastic_impulse[i] = {rows[i].normal, rows[i].tangent1, rows[i].tangent2};
-    plastic_after[i] = relative_velocity(bodies, rows[i]);
+    compression_impulse[i] = {rows[i].normal, rows[i].tangent1, rows[i].tangent2};
+    compression_after[i] = relative_velocity(bodies, rows[i]);
   }
 }
 
@@ -201,41 +202,54 @@ void RestingSolve::expand()
     const double expansion = row.restitution * row.normal;
     row.normal += expansion;
     row.floor = row.normal;
+    row.target = row.overlap_target;
     if (expansion > 0.0) apply_impulse(bodies, row, row.n * expansion);
   }
 }
 
-// Impulses and velocities are linear in a blend s of the plastic solution (0) and the one with
-// restitution (1), and both are feasible (each contact leaves at its target or faster; each
-// impulse in its cone), so every blend is; the energy change is quadratic in s, plastic + s a +
-// s^2 b: the largest s <= 1 at which it gains no energy (the plastic solve's change is <= 0 up
-// to its tolerance, and then the bound).
-void RestingSolve::blend_within_no_energy_gain()
+// What the overlaps' pushes may add: for each, 1/2 m (s^2 - (e a)^2) where its minimum separation
+// velocity s exceeds what its restitution gives (the energy ledger's credit, ag_contact_energy.h).
+double RestingSolve::overlap_credit() const
+{
+  double credit = 0.0;
+  for (const Row &row : rows) {
+    const double kept = row.restitution * std::max(0.0, -dot(row.before, row.n));
+    if (row.overlap_target > kept) credit += 0.5 * row.normal_mass * (row.overlap_target * row.overlap_target - kept * kept);
+  }
+  return credit;
+}
+
+// Impulses and velocities are linear in a blend s of the compression (0) and the solution with
+// restitution (1): every contact of a blend leaves at least at the compression's target, every
+// impulse lies in its cone. The energy change is quadratic in s, compression + s a + s^2 b: the
+// largest s <= 1 at which it gains no more than the overlaps' credit. (Where that stops short,
+// the overlaps open short by as much; the solver reports it.)
+void RestingSolve::blend_within_overlap_credit()
 {
   std::vector<RigidBodyState> &bodies = *solver_bodies;
-  double plastic_change = 0.0, a = 0.0, b = 0.0;
+  double compression_change = 0.0, a = 0.0, b = 0.0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row &row = rows[i];
-    const RowImpulse &p = plastic_impulse[i];
-    const Vec3 plastic = row.n * p.normal + row.plane.tangent1 * p.tangent1 + row.plane.tangent2 * p.tangent2;
-    const Vec3 dJ = row_impulse_sum(row) - plastic, du = relative_velocity(bodies, row) - plastic_after[i];
-    plastic_change += 0.5 * dot(plastic, row.before + plastic_after[i]);
-    a += 0.5 * (dot(dJ, row.before + plastic_after[i]) + dot(plastic, du));
+    const RowImpulse &p = compression_impulse[i];
+    const Vec3 compressed = row.n * p.normal + row.plane.tangent1 * p.tangent1 + row.plane.tangent2 * p.tangent2;
+    const Vec3 dJ = row_impulse_sum(row) - compressed, du = relative_velocity(bodies, row) - compression_after[i];
+    compression_change += 0.5 * dot(compressed, row.before + compression_after[i]);
+    a += 0.5 * (dot(dJ, row.before + compression_after[i]) + dot(compressed, du));
     b += 0.5 * dot(dJ, du);
   }
-  const double room = std::max(0.0, -plastic_change);    // s a + s^2 b <= room: no gain in all
+  const double room = std::max(0.0, overlap_credit() - compression_change);    // s a + s^2 b <= room
   if (a + b <= room) return;
   const double root = std::sqrt(std::max(0.0, a * a + 4.0 * b * room));
   double s = b > 0.0 ? (root - a) / (2.0 * b) : b < 0.0 ? 2.0 * room / (a + root) : room / a;
   s = std::min(1.0, std::max(0.0, s));
   for (std::size_t i = 0; i < island_bodies.size(); ++i) {
     RigidBodyState &body = bodies[island_bodies[i]];
-    body.v = plastic_v[i] + (body.v - plastic_v[i]) * s;
-    body.omega = plastic_omega[i] + (body.omega - plastic_omega[i]) * s;
+    body.v = compression_v[i] + (body.v - compression_v[i]) * s;
+    body.omega = compression_omega[i] + (body.omega - compression_omega[i]) * s;
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
     Row &row = rows[i];
-    const RowImpulse &p = plastic_impulse[i];
+    const RowImpulse &p = compression_impulse[i];
     row.normal = p.normal + (row.normal - p.normal) * s;
     row.tangent1 = p.tangent1 + (row.tangent1 - p.tangent1) * s;
     row.tangent2 = p.tangent2 + (row.tangent2 - p.tangent2) * s;

@@ -24,12 +24,12 @@
 // approach, has no solution in a jammed packing.) With restitutions that differ between contacts
 // the expansion can gain energy, so the solve measures what its impulses change, sum
 // J . (u_before + u_after) / 2 over its contacts (the kinetic energy in the walls' frames), and
-// takes the blend with the plastic solution (feasible, as both are) closest to the expanded one
-// that gains no energy. Overlaps are left to the contact solver's overlap correction, after this
-// solve (their push is no part of a compression to give back). A plate
-// accelerating into a body it touches is a collision (a contact's gain holds a wall's
-// acceleration only until the contact closes): the body leaves at e times that approach, as
-// from a compliant impact.
+// takes the blend with the compression closest to the expanded solution that gains no more than
+// its overlaps' pushes add (an overlap's push is no part of the compression given back: the
+// compression only stops the approaches, and the sweeps after the expansion open the overlaps).
+// A plate accelerating into a body it touches is a collision (a contact's gain holds a wall's
+// acceleration only until the contact closes): the body leaves at e times that approach, as from
+// a compliant impact.
 #pragma once
 
 #include "ag_solver_contact.h"
@@ -55,9 +55,10 @@ class RestingSolve {
                const std::vector<int> &island, const SolverSettings &settings);
   int sweeps_to_tolerance(const SolverSettings &settings);    // -1: stopped at the cap
   double sweep();    // the square of the largest velocity change a contact asked for
-  void keep_plastic_solution();
+  void keep_compression();
   void expand();
-  void blend_within_no_energy_gain();
+  double overlap_credit() const;
+  void blend_within_overlap_credit();
   void store();
 
   // What a sweep needs of an island contact, in sweep order and in one place: its bodies and
@@ -67,7 +68,8 @@ class RestingSolve {
     int contact, body1, body2;    // island contact (index into island_contacts)
     Vec3 r1, r2, gain, n;
     TangentPlane plane;
-    double target, normal_mass, mu;    // max(0, min separation) or 0, 1 / n.K.n, friction
+    double target, normal_mass, mu;    // the separation it must reach, 1 / n.K.n, friction
+    double overlap_target;             // max(0, min separation)
     double restitution;                // kept in a collision (Poisson's), else 0
     double floor;                      // the least normal impulse (after the expansion)
     Vec3 before;                       // relative velocity at the start
@@ -87,15 +89,15 @@ class RestingSolve {
   std::vector<int> colour_of;
   std::vector<int> by_key, sweep_order;    // island contacts by key, and colour by colour
   std::vector<std::vector<int>> body_colours;    // per body: the colours of its contacts so far
-  // With collisions: the island's movable bodies, and the plastic solution's velocities, row
-  // impulses and relative velocities after.
+  // With collisions: the island's movable bodies, and the compression's velocities, row impulses
+  // and relative velocities after.
   bool collisions = false;    // a row keeps restitution
   std::vector<int> island_bodies;
-  std::vector<Vec3> plastic_v, plastic_omega, plastic_after;
+  std::vector<Vec3> compression_v, compression_omega, compression_after;
   struct RowImpulse {
     double normal, tangent1, tangent2;
   };
-  std::vector<RowImpulse> plastic_impulse;
+  std::vector<RowImpulse> compression_impulse;
   Vec3 row_impulse_sum(const Row &row) const
   {
     return row.n * row.normal + row.plane.tangent1 * row.tangent1 + row.plane.tangent2 * row.tangent2;

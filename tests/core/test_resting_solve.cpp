@@ -273,6 +273,29 @@ TEST(RestingSolve, WithRestitutionTwoBeadsOnAPlateReboundAsAlone)
   }
 }
 
+TEST(RestingSolve, WithRestitutionAnOverlapLeavesAtTheFasterOfItsPushAndItsRebound)
+{
+  // The two beads on a plate, overlapping: they leave at the larger of e times their approach and
+  // the overlap's minimum separation velocity, as Stronge's law with the overlap correction has
+  // it for the pair alone (the push is no part of the compression that the expansion gives back).
+  const double approach = 0.6 * RESTING_SPEED, e = 0.5;
+  for (double push : {0.2 * approach, 2.0 * approach}) {
+    ContactSolver s;
+    s.add_body(RigidBodyState::wall(Vec3()));
+    s.add_body(RigidBodyState::sphere(1.0, 0.5, Vec3(0, 0, 0.5), Vec3(0.5 * approach, 0, 0), Vec3()));
+    s.add_body(RigidBodyState::sphere(1.0, 0.5, Vec3(1, 0, 0.5), Vec3(-0.5 * approach, 0, 0), Vec3()));
+    s.add_contact(1, 2, Vec3(0.5, 0, 0.5), Vec3(1, 0, 0), {e, 0.0}, push);
+    s.add_contact(0, 1, Vec3(0, 0, 0), Vec3(0, 0, 1), {e, 0.0});
+    s.add_contact(0, 2, Vec3(1, 0, 0), Vec3(0, 0, 1), {e, 0.0});
+    for (int c = 0; c < 3; ++c) s.set_key(c, mix64(static_cast<std::uint64_t>(c)));
+    s.solve(restitution_settings());
+    std::printf("[ measured ] push %.1f of the approach: leaves at %.4f of it\n", push / approach,
+                separation(s, 0) / approach);
+    EXPECT_NEAR(separation(s, 0), std::max(e * approach, push),
+                (1 + e) * ContactSolver::Settings().resting_tolerance * RESTING_SPEED);
+  }
+}
+
 TEST(RestingSolve, WithRestitutionABeadInAWedgeGainsNoEnergy)
 {
   // A bead strikes one face of a narrow wedge (its faces' normals 155 degrees apart) with e = 1,

@@ -165,9 +165,7 @@ TEST_F(RestingContacts, WithRestingNewtonTheJammedCornerContinuesFromARestartFil
   const double largest = largest_difference(straight, velocities());
   std::printf("[ measured ] the jammed corner, newton, a step after a restart file: largest velocity difference "
               "%.3g m/s\n", largest);
-  // The rods' round-off on reading the file, grown by the overlap correction's Jacobi sweeps (as
-  // without resting): 1e-14 of the fastest velocity, 0.1 m/s.
-  EXPECT_LT(largest, 1e-14);
+  EXPECT_LT(largest, 1e-15);
 }
 
 class RestingRing : public BeadBox {
