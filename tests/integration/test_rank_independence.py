@@ -3,8 +3,8 @@
 islands (in x and in y). An island whose contacts are found on several ranks is solved whole
 (docs/pair_gran_impulse.rst, "Parallel runs"); solved in pieces, the jammed corner's velocities
 differed by up to 2.3e-2 m/s after 10 steps on 2 ranks. The states are the shipped ones:
-channel-small's jammed corner (one island spanning the packing) and its condensate (a rod layer
-pushing a bead crystal)."""
+channel-small's jammed corner (one island spanning the packing; also with resting newton) and its
+condensate (a rod layer pushing a bead crystal)."""
 import os
 
 import numpy as np
@@ -21,6 +21,8 @@ STATES = {
                       "-var", "from", "states/channel-small-jammed-corner-0s.data.gz", "-var", "time", "0.001"],
     "condensed": ["-var", "from", "states/channel-small-condensed-500s.data.gz", "-var", "time", "500.001"],
 }
+# The jammed corner again with pair gran/impulse's resting newton (its expansion and energy bound).
+STATES["jammed-corner-newton"] = STATES["jammed-corner"] + ["-var", "resting", "newton"]
 TOLERANCE = 1e-5    # m/s (the issue's bound; an island solved whole agrees to round-off)
 
 WRAPPER = """processors ${px} ${py} 1
