@@ -116,9 +116,8 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
 }
 
 // The normal impulse that makes the contact leave at its target (never pulling, nor below its
-// floor; over-relaxed),
-// then the friction that stops its slip within mu times it. A contact that stays open and
-// carried nothing has nothing to do (zero).
+// floor; over-relaxed), then the friction that stops its slip within mu times it. A contact that
+// stays open and carried nothing has nothing to do (zero).
 Vec3 RestingSolve::row_impulse(Row &row, const Vec3 &u, double &asked2)
 {
   const double asked = (row.target - dot(u, row.n)) * row.normal_mass;
