@@ -112,7 +112,7 @@ def main():
     ap.add_argument("--ny", type=int, default=14)
     ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--seed", type=int, default=4928, help="the deck's seed (the beads' start heights)")
-    ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, no or a speed)")
+    ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, newton, no or a speed)")
     ap.add_argument("--lmp", default=os.environ.get("ACTIVEGRAIN_LMP", os.path.join(HERE, "..", "..", "build", "lmp")))
     a = ap.parse_args()
     print(f"Beads alone, {2 * a.nx * a.ny} beads, rough {a.rough:g} (L {a.length * 1e3:g} mm), {a.time:g} s, dt {a.dt:g}, resting {a.resting}\n")

@@ -114,7 +114,7 @@ def main():
     ap.add_argument("--seeds", type=int, default=8)
     ap.add_argument("--time", type=float, default=30.0)
     ap.add_argument("--dt", type=float, default=1e-5)
-    ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, no or a speed)")
+    ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, newton, no or a speed)")
     ap.add_argument("--lmp", default=measure.default_lmp())
     ap.add_argument("--figure", help="draw the trajectories of the first roughness into this file")
     a = ap.parse_args()
