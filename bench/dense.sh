@@ -11,7 +11,8 @@
 #   base      another build's plugin, e.g. an earlier commit (BASE: its checkout with build/),
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
-# and the fluid reference: the same deck at its defaults (phi_b 0.75) from its own created start.
+# and the fluid reference: the same deck at its defaults (phi_b 0.75) from its own created start;
+# then channel-small's condensate (its shipped state at 500 s, 60 x 15 mm) for TIME s.
 # The grow start leaves a packing at rest, without gravity or vibration: its first few vibration
 # periods cost more (bench/README.md), so the packings are timed from vibrated states, as a long
 # run spends its steps; the fluid settles into its steady cost from the start. Prints CPU us per
@@ -73,6 +74,19 @@ printf '%-8s %-8s %-7s %-6s' total phi_b phi_r atoms
 for side in "${sides[@]}"; do printf ' %-12s %-10s' "$side:us" "x_fluid"; done; echo
 printf '%-8s %-8s %-7s %-6s' fluid 0.75 0.04 "$(loop "$work/fluid-impacts.log" | cut -d' ' -f3)"
 for side in "${sides[@]}"; do printf ' %-12s %-10s' "${fluid[$side]}" 1; done; echo
+# channel-small's condensate (60 x 15 mm, the shipped state at 500 s), TIME s from it
+condensed_state=states/channel-small-condensed-500s.data.gz
+printf '%-8s %-8s %-7s %-6s' condensed 0.75 0.04 "$(gzip -dc "$here/../examples/channel/$condensed_state" | awk '/ atoms$/ && !n {n = $1} END {print n}')"
+for side in "${sides[@]}"; do
+  if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then printf ' %-12s %-10s' - -; continue; fi
+  log="$work/condensed-$side.log"
+  (cd "$(dir_of $side)" && "$(lmp_of $side)" -in in.channel-small -var from "$condensed_state" \
+      -var time "$(awk -v b="$time" 'BEGIN{print 500 + b}')" -var dump 1.0 -var out "$work/out-$side" -log "$log" \
+      -echo none $(args_of $side) >/dev/null 2>&1) || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
+  c=$(cost "$log")
+  printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.2f", a/b}')"
+done
+echo
 for phi_b in "${phis[@]}"; do
   # the grown state, made once with ours (the grow start always reaches phi_b)
   (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \
