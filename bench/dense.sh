@@ -40,10 +40,10 @@ trap 'rm -rf "$work"' EXIT
 loop() {    # CPU seconds (the loop's wall time times its CPU use), steps and atoms of the last loop
   awk '/^Loop time of/ {t=$4; s=$9; n=$12} /% CPU use/ {c=$1+0} END {if (t=="") exit 1; print t*c/100, s, n}' "$1"
 }
-# side lmp deck_dir log end extra-args...: one timed run, to simulated time end
+# side lmp deck_dir log end extra-args...: one timed run of in.channel-small, to simulated time end
 run() {
   local side=$1 lmp=$2 dir=$3 log=$4 end=$5; shift 5
-  (cd "$dir" && "$lmp" -in in.channel-small -var Lx 30e-3 -var time "$end" -var dump 1.0 \
+  (cd "$dir" && "$lmp" -in in.channel-small -var time "$end" -var dump 1.0 \
       -var out "$work/out-$side" -log "$log" -echo none "$@" >/dev/null 2>&1) \
     || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
 }
@@ -65,9 +65,9 @@ args_of() {
 }
 
 echo "# $(date -u +%F) TIME $time s after WARM $warm s; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-declare -A fluid
+declare -A fluid densest
 for side in "${sides[@]}"; do
-  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$work/fluid-$side.log" "$time" $(args_of $side)
+  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$work/fluid-$side.log" "$time" -var Lx 30e-3 $(args_of $side)
   fluid[$side]=$(cost "$work/fluid-$side.log")
 done
 printf '%-8s %-8s %-7s %-6s' total phi_b phi_r atoms
@@ -80,9 +80,8 @@ printf '%-8s %-8s %-7s %-6s' condensed 0.75 0.04 "$(gzip -dc "$here/../examples/
 for side in "${sides[@]}"; do
   if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then printf ' %-12s %-10s' - -; continue; fi
   log="$work/condensed-$side.log"
-  (cd "$(dir_of $side)" && "$(lmp_of $side)" -in in.channel-small -var from "$condensed_state" \
-      -var time "$(awk -v b="$time" 'BEGIN{print 500 + b}')" -var dump 1.0 -var out "$work/out-$side" -log "$log" \
-      -echo none $(args_of $side) >/dev/null 2>&1) || { echo "run failed ($side): $log" >&2; tail -5 "$log" >&2; exit 1; }
+  run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v b="$time" 'BEGIN{print 500 + b}')" \
+      -var from "$condensed_state" $(args_of $side)
   c=$(cost "$log")
   printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.2f", a/b}')"
 done
@@ -109,17 +108,15 @@ for phi_b in "${phis[@]}"; do
     fi
     log="$work/$phi_b-$side.log"
     run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v a="$warm" -v b="$time" 'BEGIN{print a + b}')" \
-        -var phi_b "$phi_b" -var phi_r $phi_r \
+        -var Lx 30e-3 -var phi_b "$phi_b" -var phi_r $phi_r \
         -var from "$state" $(args_of $side)
     c=$(cost "$log")
-    [ "$side" = resting ] && densest=$c
-    [ "$side" = newton ] && densest_newton=$c
+    densest[$side]=$c
     printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.1f", a/b}')"
   done
   echo
 done
 # the cost of the densest packing with resting yes and newton over the deck's default fluid (resting no)
-for law in yes newton; do
-  c=$densest; [ $law = newton ] && c=$densest_newton
-  echo "# densest (resting $law) over the default fluid (resting no): $(awk -v a="$c" -v b="${fluid[impacts]}" 'BEGIN{printf "%.2f", a/b}')"
+for side in resting newton; do
+  echo "# densest ($(args_of $side | cut -d' ' -f2-)) over the default fluid (resting no): $(awk -v a="${densest[$side]}" -v b="${fluid[impacts]}" 'BEGIN{printf "%.2f", a/b}')"
 done

@@ -88,13 +88,14 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
     row.n = c.n;
     row.plane = c.tangential.plane();
     row.target = row.overlap_target = std::max(0.0, c.min_separation);
-    row.before = relative_velocity(bodies, c);
-    // Faster than its gain makes it, beyond what the last solve's tolerance leaves: a collision.
-    const double settling = settings.resting_gain * std::fabs(dot(c.gain, c.n)) + converged_speed(settings);
-    const bool collides = settings.resting_restitution && -dot(row.before, c.n) > settling;
-    row.restitution = collides ? c.material.e : 0.0;
-    row.floor = 0.0;
-    collisions = collisions || row.restitution > 0.0;
+    row.restitution = row.floor = 0.0;
+    if (settings.resting_restitution) {
+      row.before = relative_velocity(bodies, c);
+      // Faster than its gain makes it, beyond what the last solve's tolerance leaves: a collision.
+      const double settling = settings.resting_gain * std::fabs(dot(c.gain, c.n)) + converged_speed(settings);
+      if (-dot(row.before, c.n) > settling) row.restitution = c.material.e;
+      collisions = collisions || row.restitution > 0.0;
+    }
     row.normal_mass = 1.0 / c.knn;
     row.mu = c.material.mu;
     row.kn = c.K * c.n;

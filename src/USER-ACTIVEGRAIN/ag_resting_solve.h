@@ -72,7 +72,7 @@ class RestingSolve {
     double overlap_target;             // max(0, min separation)
     double restitution;                // kept in a collision (Poisson's), else 0
     double floor;                      // the least normal impulse (after the expansion)
-    Vec3 before;                       // relative velocity at the start
+    Vec3 before;                       // relative velocity at the start (with restitution)
     Vec3 kn, kt1, kt2;                 // K n, K t1, K t2
     double normal = 0.0, tangent1 = 0.0, tangent2 = 0.0;
     bool with_next = false;    // the next row has the same colour: no movable body in common

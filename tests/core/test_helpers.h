@@ -1,6 +1,8 @@
-// Shared helpers for the core tests: random rigid bodies and their energy and momenta.
+// Shared helpers for the core tests: random rigid bodies and their energy and momenta, and a
+// solved contact's separation velocity.
 #pragma once
 
+#include "ag_contact_solver.h"
 #include "ag_rigid_body.h"
 
 #include <cmath>
@@ -51,6 +53,13 @@ inline Vec3 random_unit(std::mt19937 &rng)
   std::normal_distribution<double> N;
   Vec3 v(N(rng), N(rng), N(rng));
   return v / norm(v);
+}
+
+// The normal velocity at contact c of a solved solver (body 2 minus body 1; < 0: approaching).
+inline double separation(const ContactSolver &solver, int c)
+{
+  const ContactSolver::Contact &k = solver.contact(c);
+  return dot(solver.body(k.body2).velocity_at_arm(k.r2) - solver.body(k.body1).velocity_at_arm(k.r1), k.n);
 }
 
 }    // namespace ActiveGrain::testing

@@ -106,12 +106,7 @@ double kinetic(const ContactSolver &s)
 double fastest_approach(const ContactSolver &s)
 {
   double fastest = 0;
-  for (int c = 0; c < s.num_contacts(); ++c)
-  {
-    const ContactSolver::Contact &k = s.contact(c);
-    const Vec3 u = s.body(k.body2).velocity_at_arm(k.r2) - s.body(k.body1).velocity_at_arm(k.r1);
-    fastest = std::max(fastest, -dot(u, k.n));
-  }
+  for (int c = 0; c < s.num_contacts(); ++c) fastest = std::max(fastest, -separation(s, c));
   return fastest;
 }
 
@@ -238,13 +233,6 @@ ContactSolver::Settings restitution_settings()
   ContactSolver::Settings settings = resting_settings();
   settings.resting_restitution = true;
   return settings;
-}
-
-// The normal velocity at touch k of a solved packing (body 2 minus body 1).
-double separation(const ContactSolver &s, int c)
-{
-  const ContactSolver::Contact &k = s.contact(c);
-  return dot(s.body(k.body2).velocity_at_arm(k.r2) - s.body(k.body1).velocity_at_arm(k.r1), k.n);
 }
 
 }    // namespace

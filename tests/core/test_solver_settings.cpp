@@ -32,12 +32,6 @@ ContactSolver flat_rod_on_plate(const Vec3 &v, const ContactMaterial &material, 
   return solver;
 }
 
-double separation(const ContactSolver &solver, int c)
-{
-  const ContactSolver::Contact &k = solver.contact(c);
-  return dot(solver.body(k.body2).velocity_at_arm(k.r2) - solver.body(k.body1).velocity_at_arm(k.r1), k.n);
-}
-
 }    // namespace
 
 TEST(SolverSettings, SettledApproachEndsTheImpact)

@@ -83,6 +83,22 @@ class RestingContacts : public LammpsTest {
     LammpsTest::SetUp();
   }
 
+  // The jammed corner 20 steps on, then one step straight on and one from a restart file written
+  // there: the largest velocity difference.
+  double jammed_corner_a_step_after_a_restart_file()
+  {
+    const std::string file = out_folder() + ".restart";
+    command(std::string(JAMMED_CELL) + JAMMED_STATE + resting() + "run 20 post no\nwrite_restart " + file +
+            "\nrun 1 post no");
+    const Velocities straight = velocities();
+    fresh_lammps();
+    command(std::string(JAMMED_CELL) + "variable continue index " + file + "\n" + resting() + "run 1 post no");
+    const double largest = largest_difference(straight, velocities());
+    std::printf("[ measured ] the jammed corner (resting %s), a step after a restart file: largest velocity "
+                "difference %.3g m/s\n", law.c_str(), largest);
+    return largest;
+  }
+
   // Runs the packing in the three orders and compares the velocities with the solve's tolerance:
   // its resting speed (twice the plates' peak acceleration times dt) times resting_tolerance.
   void expect_the_same_velocities_in_every_order(const std::string &packing, const char *name, int steps)
@@ -133,16 +149,7 @@ TEST_F(RestingContacts, TheJammedCornerContinuesFromARestartFileToRoundOff)
   // differs is the rods' round-off on reading a restart file (without resting too: 1.6e-14 m/s
   // after 20 steps), which this chaotic packing grows about e-fold every 4 steps: compared after
   // the first step.
-  command(std::string(JAMMED_CELL) + JAMMED_STATE + resting() +
-          "run 20 post no\nwrite_restart test_resting_contacts.restart\nrun 1 post no");
-  const Velocities straight = velocities();
-  fresh_lammps();
-  command(std::string(JAMMED_CELL) + "variable continue index test_resting_contacts.restart\n" + resting() +
-          "run 1 post no");
-  const double largest = largest_difference(straight, velocities());
-  std::printf("[ measured ] the jammed corner, a step after a restart file: largest velocity difference %.3g m/s\n",
-              largest);
-  EXPECT_LT(largest, 1e-15);
+  EXPECT_LT(jammed_corner_a_step_after_a_restart_file(), 1e-15);
 }
 
 TEST_F(RestingContacts, WithRestingNewtonTheJammedCornersVelocitiesDoNotDependOnContactOrder)
@@ -156,16 +163,7 @@ TEST_F(RestingContacts, WithRestingNewtonTheJammedCornerContinuesFromARestartFil
 {
   // As above, with the restitution of collisions kept.
   law = "newton";
-  command(std::string(JAMMED_CELL) + JAMMED_STATE + resting() +
-          "run 20 post no\nwrite_restart test_resting_contacts_newton.restart\nrun 1 post no");
-  const Velocities straight = velocities();
-  fresh_lammps();
-  command(std::string(JAMMED_CELL) + "variable continue index test_resting_contacts_newton.restart\n" + resting() +
-          "run 1 post no");
-  const double largest = largest_difference(straight, velocities());
-  std::printf("[ measured ] the jammed corner, newton, a step after a restart file: largest velocity difference "
-              "%.3g m/s\n", largest);
-  EXPECT_LT(largest, 1e-15);
+  EXPECT_LT(jammed_corner_a_step_after_a_restart_file(), 1e-15);
 }
 
 class RestingRing : public BeadBox {
