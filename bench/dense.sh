@@ -12,7 +12,9 @@
 #             on its own decks, from the same states (the fluid row only, for a build that
 #             cannot read states)
 # and the fluid reference: the same deck at its defaults (phi_b 0.75) from its own created start;
-# then channel-small's condensate (its shipped state at 500 s, 60 x 15 mm) for TIME s.
+# then channel-small's condensate (its shipped state at 500 s, 60 x 15 mm) for TIME s, and the
+# shipped states of a fluid (channel-small at 600 s) and of the jammed corner (grown, at rest) for
+# TIME s each, the second over the first.
 # The grow start leaves a packing at rest, without gravity or vibration: its first few vibration
 # periods cost more (bench/README.md), so the packings are timed from vibrated states, as a long
 # run spends its steps; the fluid settles into its steady cost from the start. Prints CPU us per
@@ -86,6 +88,30 @@ for side in "${sides[@]}"; do
   printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${fluid[$side]}" 'BEGIN{printf "%.2f", a/b}')"
 done
 echo
+# From the shipped states, as a run starts from them, TIME s each: channel-small's fluid at 600 s
+# (60 x 15 mm, phi_b 0.75, run at the decks' defaults) and the jammed corner's grown state (total
+# 0.862, at rest when the run starts); the second over the first.
+declare -A shipped
+shipped_row() {    # label state start extra-args...
+  local label=$1 state=$2 start=$3; shift 3
+  local n; n=$(gzip -dc "$here/../examples/channel/$state" | awk '/ atoms$/ && !n {n = $1} END {print n}')
+  printf '%-25s %-6s' "$label" "$n"
+  for side in "${sides[@]}"; do
+    if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then printf ' %-12s %-10s' - -; continue; fi
+    local log="$work/shipped-$label-$side.log"
+    run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v a="$start" -v b="$time" 'BEGIN{print a + b}')" \
+        -var from "$state" "$@" $(args_of $side)
+    local c; c=$(cost "$log")
+    [ "$label" = fluid-600s ] && shipped[$side]=$c
+    printf ' %-12s %-10s' "$c" "$(awk -v a="$c" -v b="${shipped[$side]}" 'BEGIN{printf "%.2f", a/b}')"
+  done
+  echo
+}
+printf '%-25s %-6s' "shipped state" atoms
+for side in "${sides[@]}"; do printf ' %-12s %-10s' "$side:us" "x_fluid600"; done; echo
+shipped_row fluid-600s states/channel-small-mu0.003-seed2-600s.data.gz 600
+shipped_row jammed-corner-0s states/channel-small-jammed-corner-0s.data.gz 0 \
+    -var Lx 30e-3 -var phi_b 0.8203 -var phi_r 0.0414
 for phi_b in "${phis[@]}"; do
   # the grown state, made once with ours (the grow start always reaches phi_b)
   (cd "$here/../examples/channel" && "$ours" -in in.channel-small -var Lx 30e-3 -var phi_b "$phi_b" \

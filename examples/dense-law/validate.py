@@ -14,10 +14,11 @@ run is classified by `activegrain phase` over 5-s windows, one frame a second.
   formation    from the created state, seeds 2024 2 1, --time seconds: per run the onset, the
                first second from which at least 80 % of the next 25 s of frames are condensed,
                and the condensed frames after it.
-  compression  examples/dense-law/in.compress (beads alone in a rectangle, a piston steps the
-               area fraction through 0.80, 0.82, 0.84, 0.86), --seeds: per run and total the
-               piston's mean pressure (N/m) over each hold after its first --settle seconds, with
-               the standard error of its blocks.
+  compression  examples/dense-law/in.compress (beads alone in a cell, a piston steps the area
+               fraction through 0.80, 0.82, 0.84, 0.86), --seeds: per run and total the piston's
+               mean pressure (N/m) over each hold after its first --settle seconds, with the
+               standard error of its blocks; per side and total the seeds' mean, its standard
+               error and the seeds' range.
 
 Usage, from the repository root (hours of one core per side at the paper's lengths):
     /usr/bin/python3 examples/dense-law/validate.py condensate --base ../ag-57e4d5b --out RUN --time 100 --seeds 1 2 3
@@ -25,7 +26,8 @@ Usage, from the repository root (hours of one core per side at the paper's lengt
     /usr/bin/python3 examples/dense-law/validate.py compression --base ../ag-57e4d5b --out RUN --hold 10
 --quick runs 2 s each (checks the script). --ours-var resting newton runs that law on our side;
 --ours-lmp a frozen copy of our LAMMPS while the checkout is rebuilt; --totals 0.80 0.82 the
-compression's totals only (in.compress's cell jams between 0.82 and 0.84).
+compression's totals only; --geometry channel its cell periodic along x (in.compress: the
+rectangle's crystal jams between 0.82 and 0.84, the channel's stays one to 0.88).
 """
 import argparse
 import concurrent.futures
@@ -110,7 +112,7 @@ def compression_row(folder, settle):
     step, pressure, total = np.loadtxt(folder / "piston.txt", unpack=True)
     time = step * 1e-4
     row = {}
-    for held in (0.80, 0.82, 0.84, 0.86):
+    for held in (0.80, 0.82, 0.84, 0.86, 0.88):
         at = np.isclose(total, held, atol=1e-9)
         if not at.any():
             continue
@@ -118,6 +120,20 @@ def compression_row(folder, settle):
         if blocks.size > 1:
             row[f"P at {held:.2f}"] = f"{blocks.mean():.4g}+-{blocks.std(ddof=1) / np.sqrt(blocks.size):.2g}"
     return row
+
+
+def seeds_summary(rows, side, seeds):
+    """Per column: the mean over the seeds, its standard error and the seeds' range, from the
+    runs' values (condensate: every quantity; compression: the pressures, without their errors)."""
+    summary = {}
+    for column in rows[(side, seeds[0])]:
+        values = [rows[(side, seed)].get(column) for seed in seeds]
+        values = np.array([float(v.split("+-")[0]) if isinstance(v, str) else v for v in values
+                           if isinstance(v, float) or (isinstance(v, str) and "+-" in v)])
+        if values.size:
+            error = values.std(ddof=1) / np.sqrt(values.size) if values.size > 1 else np.nan
+            summary[column] = f"{values.mean():.4g} +- {error:.2g} ({values.min():.4g}-{values.max():.4g})"
+    return summary
 
 
 def main(argv=None):
@@ -133,6 +149,8 @@ def main(argv=None):
                     "copy while the checkout is rebuilt")
     ap.add_argument("--sides", nargs="+", choices=["ours", "base"], default=["ours", "base"])
     ap.add_argument("--totals", nargs="+", help="compression: the area fractions (default in.compress's)")
+    ap.add_argument("--geometry", choices=["rectangle", "channel"], default="rectangle",
+                    help="compression: the cell (in.compress)")
     ap.add_argument("--hold", type=float, default=10.0, help="compression: seconds at each total")
     ap.add_argument("--settle", type=float, default=2.0, help="compression: seconds of each hold left out")
     ap.add_argument("--jobs", type=int, default=2)
@@ -150,6 +168,7 @@ def main(argv=None):
         compress_vars = ([("hold", "0.2"), ("ramp", "0.05"), ("block", "0.05"), ("totals", "0.80")]
                          if args.quick else [("hold", repr(args.hold)), ("ramp", "2.0"), ("block", "0.5")])
         compress_vars += [("totals", *args.totals)] if args.totals and not args.quick else []
+        compress_vars += [("geometry", args.geometry)]
         sides = {side: (lmp, checkout, deck_vars + compress_vars) for side, (lmp, checkout, deck_vars) in sides.items()}
         time = None
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
@@ -167,11 +186,10 @@ def main(argv=None):
     for (side, seed), row in rows.items():
         print(f"{side:5} {seed:5} " + "  ".join(f"{v:>15.3f}" if isinstance(v, float) else f"{v:>15}"
                                                for v in row.values()))
-    if condensate:
+    if condensate or compression:
         for side in sides:
-            values = {c: np.array([rows[(side, s)][c] for s in seeds]) for c in ("rods", "speed", "ahead", "behind")}
-            print(f"{side:5} seeds' mean and spread: " + ", ".join(
-                f"{c} {v.mean():.3f} ({v.min():.3f}-{v.max():.3f})" for c, v in values.items()))
+            print(f"{side:5} seeds' mean +- standard error (range): " + ", ".join(
+                f"{c} {v}" for c, v in seeds_summary(rows, side, seeds).items()))
     return 0
 
 
