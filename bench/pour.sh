@@ -4,15 +4,17 @@
 #          recommends for realistic work (hooke/history, k 2e5 for pair and wall, dt 1e-4)
 #   ours   examples/lammps-granular/in.pour: pair gran/impulse and fix wall/impulse (e 0.5,
 #          mu 0.5) in place of the Hookean styles, at time step DT (default 0.02) with neighbor
-#          skin SKIN (default 0.5: at least 4 dt times the fastest grain), resting yes, resolution
-#          50, slop SLOP (default 0.01), the resting solve's TOLERANCE (0.3) and MAX_SWEEPS (100)
+#          skin SKIN (default 0.5: at least 4 dt times the fastest grain), resting RESTING
+#          (default yes), resolution 50, slop SLOP (default 0.01), the resting solve's TOLERANCE
+#          (0.3) and MAX_SWEEPS (100)
 # Both runs of the example (pour 3000 grains for 25 time units, then 25 of chute flow). Prints,
 # per run and side: the loop's CPU seconds (its wall time times its CPU use), simulated time per
 # CPU second and ours over stock's, the heap's atoms, kinetic and rotational energy at the
 # run's end with ours over stock's, and ours' largest overlap over the run (grain diameters).
 #   bench/pour.sh [--quick]    --quick: a hundredth of each run (checks the script)
-#   DT, SKIN, RESOLUTION (50), SLOP, TOLERANCE, MAX_SWEEPS, OURS_ARGS (more -var settings for
-#   ours) override the defaults; SLOP=0 TOLERANCE=0.01 MAX_SWEEPS=1000 are the style's defaults.
+#   DT, SKIN, RESTING, RESOLUTION (50), SLOP, TOLERANCE, MAX_SWEEPS, OURS_ARGS (more -var
+#   settings for ours) override the defaults; SLOP=0 TOLERANCE=0.01 MAX_SWEEPS=1000 are the
+#   style's defaults.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 quick=0
@@ -41,7 +43,7 @@ runs() {
 echo "# $(date -u +%F) each run $span time units; stock dt 1e-4 ($stock_steps steps), ours dt $dt ($ours_steps steps); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 run stock -in "$here/in.pour-stock" -var steps "$stock_steps"
 run ours -in "$here/../examples/lammps-granular/in.pour" -var steps "$ours_steps" -var dt "$dt" \
-    -var resting yes -var resolution "${RESOLUTION:-50}" -var skin "${SKIN:-0.5}" -var slop "${SLOP:-0.01}" \
+    -var resting "${RESTING:-yes}" -var resolution "${RESOLUTION:-50}" -var skin "${SKIN:-0.5}" -var slop "${SLOP:-0.01}" \
     -var tolerance "${TOLERANCE:-0.3}" -var max_sweeps "${MAX_SWEEPS:-100}" ${OURS_ARGS:-}
 paste <(runs "$work/stock.log") <(runs "$work/ours.log") | awk -v span=$span '
   BEGIN {split("pour chute", name)

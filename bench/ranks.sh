@@ -11,7 +11,8 @@
 #   bench/ranks.sh [--quick]          --quick: a few steps per run (checks the script)
 #   BASE=../ag-base bench/ranks.sh    git worktree add ../ag-base 57e4d5b &&
 #                                     (cd ../ag-base && bash -c 'source tools/common.sh; prepare_build')
-#   TIME (0.1 s; 0.01 s for the jammed corner) overrides the run length.
+#   TIME (0.1 s; 0.01 s for the jammed corner) overrides the run length; OURS_ARGS adds deck
+#   variables to this checkout's runs (e.g. "-var resting newton").
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 quick=0
@@ -45,8 +46,9 @@ for system in channel jammed; do
     lmp=$ours; examples=$here/../examples
     [ "$side" = base ] && { lmp=$base/build/lmp; examples=$base/examples; }
     mkdir -p "$work/out"
-    t1=$(one_run "$lmp" "$examples" 1 "$work/$system-$side-1.log" ${args[$system]})
-    t2=$(one_run "$lmp" "$examples" 2 "$work/$system-$side-2.log" ${args[$system]})
+    extra=(); [ "$side" = ours ] && extra=(${OURS_ARGS:-})
+    t1=$(one_run "$lmp" "$examples" 1 "$work/$system-$side-1.log" ${args[$system]} "${extra[@]}")
+    t2=$(one_run "$lmp" "$examples" 2 "$work/$system-$side-2.log" ${args[$system]} "${extra[@]}")
     printf '%-8s %-6s %-10s %-10s %-10s\n' "$system" "$side" "$t1" "$t2" "$(awk -v a="$t1" -v b="$t2" 'BEGIN{printf "%.0f %%", 100*a/(2*b)}')"
   done
 done
