@@ -22,11 +22,11 @@ constexpr double DT = 1e-5;
 class DensePackingEnergy : public BeadMonolayer {
  protected:
   struct Result {
-    double largest_rise = 0.0;       // largest kinetic energy increase of one step (J)
+    double largest_rise = 0.0;       // largest energy increase of one step (J)
     double largest_fall = 0.0;       // largest decrease, for scale
     double largest_overlap = 0.0;    // of any contact during the run (m)
     double mass = 0.0;
-    double kinetic_lost = 0.0;       // kinetic energy at the start less at the end (J)
+    double energy_lost = 0.0;        // energy at the start less at the end (J)
     double accounted = 0.0;          // dissipated less the overlap correction's work, summed (J)
   };
 
@@ -88,7 +88,7 @@ class DensePackingEnergy : public BeadMonolayer {
     };
     Result r;
     double previous = energy();
-    r.kinetic_lost = previous;
+    r.energy_lost = previous;
     using LAMMPS_NS::PairGranImpulse;
     for (int step = 0; step < setup.steps; ++step) {
       command("run 1 pre no post no");
@@ -99,7 +99,7 @@ class DensePackingEnergy : public BeadMonolayer {
       r.largest_fall = std::max(r.largest_fall, previous - now);
       previous = now;
     }
-    r.kinetic_lost -= previous;
+    r.energy_lost -= previous;
     r.largest_overlap = largest_overlap();
     r.mass = value("mass(all)");
     return r;
@@ -110,9 +110,9 @@ class DensePackingEnergy : public BeadMonolayer {
     MPI_Comm_rank(MPI_COMM_WORLD, &me);
     MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
     if (me == 0)
-      std::printf("[ measured ] %s, %d ranks: largest kinetic energy rise in a step %.3g J, largest fall %.3g J, "
-                  "largest overlap %.3g m; kinetic energy lost %.6g J, dissipated less overlap work %.6g J\n",
-                  what.c_str(), nprocs, r.largest_rise, r.largest_fall, r.largest_overlap, r.kinetic_lost,
+      std::printf("[ measured ] %s, %d ranks: largest energy rise in a step %.3g J, largest fall %.3g J, "
+                  "largest overlap %.3g m; energy lost %.6g J, dissipated less overlap work %.6g J\n",
+                  what.c_str(), nprocs, r.largest_rise, r.largest_fall, r.largest_overlap, r.energy_lost,
                   r.accounted);
   }
   // Without the overlap correction: contacts happened, no step gained kinetic energy, and the
@@ -121,7 +121,7 @@ class DensePackingEnergy : public BeadMonolayer {
   {
     ASSERT_GT(r.largest_fall, 0.0);
     EXPECT_LE(r.largest_rise, 1e-9 * r.largest_fall);
-    EXPECT_NEAR(r.accounted, r.kinetic_lost, ledger * r.kinetic_lost);
+    EXPECT_NEAR(r.accounted, r.energy_lost, ledger * r.energy_lost);
   }
 };
 
@@ -139,7 +139,7 @@ TEST_F(DensePackingEnergy, OverlapCorrectionAddsAtMostItsMinimumSeparationEnergy
   report("beta 0.2", r);
   const double push = beta * r.largest_overlap / DT;
   EXPECT_LE(r.largest_rise, 0.5 * r.mass * push * push + 1e-9 * r.largest_fall);
-  EXPECT_NEAR(r.accounted, r.kinetic_lost, 1e-3 * r.kinetic_lost);
+  EXPECT_NEAR(r.accounted, r.energy_lost, 1e-3 * r.energy_lost);
 }
 
 TEST_F(DensePackingEnergy, NoStepRaisesKineticEnergyWithRestingContactsSolvedTogether)
