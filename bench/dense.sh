@@ -56,6 +56,11 @@ warm_deck() {
       -var phi_r $phi_r -var resting yes -var dump 1.0 -var out "$work/out-warm" -echo none "$@" >/dev/null 2>&1)
 }
 cost() { read -r t s n < <(loop "$1"); awk -v t="$t" -v s="$s" -v n="$n" 'BEGIN{printf "%.4g", t/(s*n)*1e6}'; }
+atoms_in() { gzip -dc "$1" | awk '/ atoms$/ && !n {n = $1} END {print n}'; }    # a state's atom count
+# a build from before states (no in.read-state) times the fluid rows only: prints its empty cells
+cannot_read_states() {
+  [ "$1" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ] && printf ' %-12s %-10s' - -
+}
 mkdir -p "$work"/out-{impacts,resting,newton,base,warm}
 
 sides=(impacts resting newton); [ -n "$base" ] && sides+=(base)
@@ -78,9 +83,9 @@ printf '%-8s %-8s %-7s %-6s' fluid 0.75 0.04 "$(loop "$work/fluid-impacts.log" |
 for side in "${sides[@]}"; do printf ' %-12s %-10s' "${fluid[$side]}" 1; done; echo
 # channel-small's condensate (60 x 15 mm, the shipped state at 500 s), TIME s from it
 condensed_state=states/channel-small-condensed-500s.data.gz
-printf '%-8s %-8s %-7s %-6s' condensed 0.75 0.04 "$(gzip -dc "$here/../examples/channel/$condensed_state" | awk '/ atoms$/ && !n {n = $1} END {print n}')"
+printf '%-8s %-8s %-7s %-6s' condensed 0.75 0.04 "$(atoms_in "$here/../examples/channel/$condensed_state")"
 for side in "${sides[@]}"; do
-  if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then printf ' %-12s %-10s' - -; continue; fi
+  cannot_read_states "$side" && continue
   log="$work/condensed-$side.log"
   run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v b="$time" 'BEGIN{print 500 + b}')" \
       -var from "$condensed_state" $(args_of $side)
@@ -94,10 +99,9 @@ echo
 declare -A shipped
 shipped_row() {    # label state start extra-args...
   local label=$1 state=$2 start=$3; shift 3
-  local n; n=$(gzip -dc "$here/../examples/channel/$state" | awk '/ atoms$/ && !n {n = $1} END {print n}')
-  printf '%-25s %-6s' "$label" "$n"
+  printf '%-25s %-6s' "$label" "$(atoms_in "$here/../examples/channel/$state")"
   for side in "${sides[@]}"; do
-    if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then printf ' %-12s %-10s' - -; continue; fi
+    cannot_read_states "$side" && continue
     local log="$work/shipped-$label-$side.log"
     run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v a="$start" -v b="$time" 'BEGIN{print a + b}')" \
         -var from "$state" "$@" $(args_of $side)
@@ -126,12 +130,10 @@ for phi_b in "${phis[@]}"; do
       || { echo "warm-up failed: phi_b $phi_b" >&2; tail -5 "$work/warm-$phi_b.log" >&2; exit 1; }
     state=$(ls "$work/warm-$phi_b"-*s.data.gz)
   fi
-  atoms=$(gzip -dc "$state" | awk '/ atoms$/ && !n {n = $1} END {print n}')
+  atoms=$(atoms_in "$state")
   printf '%-8s %-8s %-7s %-6s' "$(awk -v a="$phi_b" -v b=$phi_r 'BEGIN{printf "%.3f", a+b}')" "$phi_b" $phi_r "$atoms"
   for side in "${sides[@]}"; do
-    if [ "$side" = base ] && [ ! -f "$base/examples/rods-and-beads/in.read-state" ]; then
-      printf ' %-12s %-10s' - -; continue    # a build from before states: the fluid row only
-    fi
+    cannot_read_states "$side" && continue
     log="$work/$phi_b-$side.log"
     run "$side" "$(lmp_of $side)" "$(dir_of $side)" "$log" "$(awk -v a="$warm" -v b="$time" 'BEGIN{print a + b}')" \
         -var Lx 30e-3 -var phi_b "$phi_b" -var phi_r $phi_r \

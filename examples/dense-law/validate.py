@@ -122,14 +122,19 @@ def compression_row(folder, settle):
     return row
 
 
+def number(value):
+    """A run's quantity as a number: a float, or a pressure's mean from its "mean+-error"; None for
+    a count such as "48/100"."""
+    if isinstance(value, float):
+        return value
+    return float(value.split("+-")[0]) if isinstance(value, str) and "+-" in value else None
+
+
 def seeds_summary(rows, side, seeds):
-    """Per column: the mean over the seeds, its standard error and the seeds' range, from the
-    runs' values (condensate: every quantity; compression: the pressures, without their errors)."""
+    """Per numeric column: the mean over the seeds, its standard error and the seeds' range."""
     summary = {}
     for column in rows[(side, seeds[0])]:
-        values = [rows[(side, seed)].get(column) for seed in seeds]
-        values = np.array([float(v.split("+-")[0]) if isinstance(v, str) else v for v in values
-                           if isinstance(v, float) or (isinstance(v, str) and "+-" in v)])
+        values = np.array([v for v in (number(rows[(side, seed)].get(column)) for seed in seeds) if v is not None])
         if values.size:
             error = values.std(ddof=1) / np.sqrt(values.size) if values.size > 1 else np.nan
             summary[column] = f"{values.mean():.4g} +- {error:.2g} ({values.min():.4g}-{values.max():.4g})"

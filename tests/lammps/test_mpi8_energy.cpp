@@ -83,9 +83,8 @@ class DensePackingEnergy : public BeadMonolayer {
             // Speeds of a few cm/s: rods run into rods and beads.
             "velocity all create 3e14 4928 dist gaussian\n"
             "thermo 0\ntimestep " + std::to_string(setup.dt) + "\nrun 0 post no");
-    const auto energy = [&] {
-      return kinetic_energy() + (setup.gravity ? 9.81 * value("mass(all)*xcm(all,z)") : 0.0);
-    };
+    // fix gravity's scalar: the potential energy at this step's positions
+    const auto energy = [&] { return kinetic_energy() + (setup.gravity ? value("f_gravity") : 0.0); };
     Result r;
     double previous = energy();
     r.energy_lost = previous;
