@@ -88,7 +88,7 @@ void CompliantImpact::start(std::vector<RigidBodyState> &bodies, std::vector<Sol
   velocities.resize(n);
   plastic = false;
   for (std::size_t k = 0; k < n; ++k) {
-    springs[k].e = contact(k).material.e;
+    springs[k].e = contact(k).model.normal.e;
     plastic = plastic || springs[k].e == 0.0;
     velocities[k] = contact_velocity(k);
   }
@@ -228,7 +228,7 @@ void CompliantImpact::kick(double dtau)
     const double dp = forces[k] * span;
     if (dp <= 0.0) continue;
     bool stuck = false;
-    Vec3 friction = c.tangential.friction(velocities[k], c.material.mu, dp, stuck);
+    Vec3 friction = c.model.tangential.friction(c.tangential, velocities[k], dp, stuck);
     if (stuck) friction *= 1.0 / jacobi.share(k);
     jacobi.add(k, c.n * dp + friction);
   }
@@ -247,7 +247,7 @@ void CompliantImpact::take_back()
     const int k = pushed[i];
     const SolverContact &c = contact(k);
     const double before = dot(velocities[k], c.n);
-    if (c.material.e != 0.0 || before >= 0.0) continue;
+    if (!c.model.normal.plastic() || before >= 0.0) continue;
     const double after = dot(contact_velocity(k), c.n);
     if (after <= 0.0) continue;
     jacobi.impulse(k) *= -after / (after - before);

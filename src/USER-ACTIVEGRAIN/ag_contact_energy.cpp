@@ -7,7 +7,7 @@ ContactEnergy contact_energy(const ContactSolver &solver, int c, const Vec3 &vel
 {
   const ContactSolver::Contact &contact = solver.contact(c);
   const double change = dot(contact.impulse, (velocity_before + contact.velocity_after) * 0.5 + contact.gain);
-  const double restituted = contact.material.e * approach;
+  const double restituted = contact.model.normal.e * approach;
   ContactEnergy energy;
   if (contact.min_separation > restituted)
     energy.overlap_work = 0.5 * (contact.min_separation * contact.min_separation - restituted * restituted) /

@@ -19,15 +19,15 @@ int ContactSolver::add_body(const RigidBodyState &body)
 }
 
 int ContactSolver::add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
-                               const ContactMaterial &material, double min_separation,
+                               const ContactModel &model, double min_separation,
                                const Vec3 &gain, double time)
 {
   return add_contact_arms(body1, body2, point - bodies[body1].com, point - bodies[body2].com, n,
-                          material, min_separation, gain, time);
+                          model, min_separation, gain, time);
 }
 
 int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2,
-                                    const Vec3 &n, const ContactMaterial &material,
+                                    const Vec3 &n, const ContactModel &model,
                                     double min_separation, const Vec3 &gain, double time)
 {
   Contact c;
@@ -36,7 +36,7 @@ int ContactSolver::add_contact_arms(int body1, int body2, const Vec3 &r1, const 
   c.r1 = r1;
   c.r2 = r2;
   c.n = n;
-  c.material = material;
+  c.model = model;
   c.min_separation = min_separation;
   c.gain = gain;
   c.time = time;
@@ -113,8 +113,7 @@ int ContactSolver::group_by_bodies(const std::vector<int> &subset, std::vector<s
 Vec3 ContactSolver::impact_alone(const Contact &c, double min_separation) const
 {
   const Vec3 u = relative_velocity(bodies, c);
-  const double target = std::max(c.material.e * std::max(0.0, -dot(u, c.n)), min_separation);
-  return contact_law_impulse(c.K, u, c.n, c.material, target);
+  return contact_law_impulse(c.K, u, c.n, c.model, c.model.normal.target_separation(-dot(u, c.n), min_separation));
 }
 
 // A contact's whole impulse by Stronge's law: on the bodies, acting when it closes.
@@ -287,7 +286,7 @@ double ContactSolver::separate_overlaps(const std::vector<int> &island, const Se
       largest = std::max(largest, shortfall / c.min_separation);
       const double dp = shortfall / c.knn;
       bool stuck = false;
-      overlap_step.add(k, c.n * dp + c.tangential.friction(u, c.material.mu, dp, stuck));
+      overlap_step.add(k, c.n * dp + c.model.tangential.friction(c.tangential, u, dp, stuck));
       overlap_step.count(k);
     }
     if (largest == 0.0) break;

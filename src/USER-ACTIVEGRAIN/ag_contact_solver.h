@@ -60,11 +60,11 @@ class ContactSolver {
   int add_body(const RigidBodyState &body);
   // Contact at a point (lever arms from the bodies' centres of mass).
   int add_contact(int body1, int body2, const Vec3 &point, const Vec3 &n,
-                  const ContactMaterial &material, double min_separation = 0.0,
+                  const ContactModel &model, double min_separation = 0.0,
                   const Vec3 &gain = Vec3(), double time = 0.0);
   // Contact with explicit lever arms (periodic images: the caller applies the minimum image).
   int add_contact_arms(int body1, int body2, const Vec3 &r1, const Vec3 &r2, const Vec3 &n,
-                       const ContactMaterial &material, double min_separation = 0.0,
+                       const ContactModel &model, double min_separation = 0.0,
                        const Vec3 &gain = Vec3(), double time = 0.0);
 
   // Isolated contacts by Stronge's law, then each island by compliant impacts in order and its

@@ -45,10 +45,11 @@ void cap_energy(const Mat3 &K, const Vec3 &u0, Vec3 &J)
   J *= std::max(0.0, -2.0 * dot(J, u0) / dot(J, K * J));
 }
 
-Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, double e_work,
-                      double target_separation)
+Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, const TangentialModel &friction,
+                      double e_work, double target_separation)
 {
   const TangentialStep tangential(K, n);
+  const double mu = friction.mu;
   const double un0 = dot(u0, n);
   const double knn = dot(n, K * n);
   // The substep resolves the larger of the normal phases and the sliding phase (slip can take
@@ -66,7 +67,7 @@ Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, double mu, d
   double separation_end = target_separation;    // u.n at which the separation phase ends
   for (int step = 0; step < MAX_SUBSTEPS; ++step) {
     bool stuck = false;
-    const Vec3 dJ = n * dp + tangential.friction(u, mu, dp, stuck);
+    const Vec3 dJ = n * dp + friction.friction(tangential, u, dp, stuck);
     const Vec3 du = K * dJ;
     const double un = dot(u, n), dun = dot(du, n);
     // The fraction s of this substep after which the phase ends (within a substep u.n is
@@ -126,10 +127,10 @@ Vec3 stick_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, double target_se
   return K.inverse() * (n * target_separation - u);
 }
 
-bool inside_friction_cone(const Vec3 &J, const Vec3 &n, double mu)
+bool inside_friction_cone(const Vec3 &J, const Vec3 &n, const TangentialModel &friction)
 {
   const double jn = dot(J, n);
-  return jn >= 0.0 && norm(J - n * jn) <= mu * jn;
+  return jn >= 0.0 && norm(J - n * jn) <= friction.limit(jn);
 }
 
 // Stronge's e_work of an impact that restitution must bring to target_separation: e where the
@@ -194,7 +195,7 @@ double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J)
   return dot(J, u + K * J * 0.5);
 }
 
-Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
+Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactModel &model,
                          double target_separation)
 {
   const double un = dot(u, n);
@@ -209,41 +210,41 @@ Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const Cont
   // spheres). Otherwise the slip stops part-way and the impact is integrated below: with
   // coupling, the closed form can gain energy.
   const Vec3 stick = stick_impulse(K, u, n, target_separation);
-  if (inside_friction_cone(stick, n, material.mu)) {
+  if (inside_friction_cone(stick, n, model.tangential)) {
     const Vec3 Kn = K * n;
     const double coupling = norm(Kn - n * dot(Kn, n)) / dot(Kn, n);
     const double scale = std::max(std::fabs(un), target_separation);
     if (slip <= DIRECTION_TOLERANCE * scale || coupling <= DIRECTION_TOLERANCE) return stick;
-    return integrate_impact(K, u, n, material.mu, e_work, target_separation);
+    return integrate_impact(K, u, n, model.tangential, e_work, target_separation);
   }
 
   // Slide along the initial slip direction t: J = j_n (n - mu t). Valid while the slip keeps
   // its direction through the impact; then the normal velocity is linear in j_n and Newton's,
   // Poisson's and Stronge's restitution coincide.
   const Vec3 t = slip > 0.0 ? ut / slip : Vec3();
-  const Vec3 direction = n - t * material.mu;
+  const Vec3 direction = n - t * model.tangential.mu;
   const double k_dir = dot(n, K * direction);
   if (k_dir > 0.0) {
     const Vec3 slide = direction * ((target_separation - un) / k_dir);
-    if (material.mu == 0.0) return slide;
+    if (model.tangential.mu == 0.0) return slide;
     const Vec3 u_after = u + K * slide;
     const Vec3 ut_after = u_after - n * dot(u_after, n);
     if (dot(ut_after, t) >= (1.0 - DIRECTION_TOLERANCE) * norm(ut_after)) return slide;
   }
 
   // Slip stops, reverses or turns during the impact.
-  return integrate_impact(K, u, n, material.mu, e_work, target_separation);
+  return integrate_impact(K, u, n, model.tangential, e_work, target_separation);
 }
 
 Vec3 collision_impulse(const RigidBodyState &body1, const RigidBodyState &body2, const Vec3 &point,
-                       const Vec3 &n, const ContactMaterial &material)
+                       const Vec3 &n, const ContactModel &model)
 {
   const Vec3 r1 = point - body1.com, r2 = point - body2.com;
   const Vec3 u = body2.velocity_at(point) - body1.velocity_at(point);
   const double un = dot(u, n);
   if (un >= 0.0) return {};
   const Mat3 K = contact_matrix(body1, r1, body2, r2);
-  return contact_law_impulse(K, u, n, material, -material.e * un);
+  return contact_law_impulse(K, u, n, model, model.normal.target_separation(-un, 0.0));
 }
 
 }    // namespace ActiveGrain

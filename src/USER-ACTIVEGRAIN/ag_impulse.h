@@ -10,14 +10,10 @@
 // increase kinetic energy.
 #pragma once
 
+#include "ag_contact_model.h"
 #include "ag_rigid_body.h"
 
 namespace ActiveGrain {
-
-struct ContactMaterial {
-  double e = 0.0;     // restitution (Stronge's energetic coefficient), in [0, 1]
-  double mu = 0.0;    // static Coulomb friction coefficient, >= 0
-};
 
 // The matrix K with du = K J for an impulse J on body 2 (-J on body 1) at a contact whose lever
 // arms are r1 = c - x1 and r2 = c - x2:
@@ -35,7 +31,7 @@ double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J);
 // returns at most the work of compression; if the contact still separates slower than
 // target_separation after it, the normal impulse continues to it, so the law is continuous where
 // the target crosses the approach speed. Returns the impulse on body 2; J.n >= 0.
-Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactMaterial &material,
+Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactModel &model,
                          double target_separation);
 
 // A contact's tangent plane as a step of friction sees it: the frame's tangents, K restricted to
@@ -75,6 +71,6 @@ class TangentialStep {
 // One isolated collision between body 1 and body 2 at contact point c with normal n (1 -> 2).
 // Returns the impulse J on body 2 (-J on body 1); zero if the bodies separate at c.
 Vec3 collision_impulse(const RigidBodyState &body1, const RigidBodyState &body2, const Vec3 &point,
-                       const Vec3 &n, const ContactMaterial &material);
+                       const Vec3 &n, const ContactModel &model);
 
 }    // namespace ActiveGrain

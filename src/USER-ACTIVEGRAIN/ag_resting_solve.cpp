@@ -93,11 +93,11 @@ void RestingSolve::prepare(std::vector<RigidBodyState> &bodies, std::vector<Solv
       row.before = relative_velocity(bodies, c);
       // Faster than its gain makes it, beyond what the last solve's tolerance leaves: a collision.
       const double settling = settings.resting_gain * std::fabs(dot(c.gain, c.n)) + converged_speed(settings);
-      if (-dot(row.before, c.n) > settling) row.restitution = c.material.e;
+      if (-dot(row.before, c.n) > settling) row.restitution = c.model.normal.e;
       collisions = collisions || row.restitution > 0.0;
     }
     row.normal_mass = 1.0 / c.knn;
-    row.mu = c.material.mu;
+    row.mu = c.model.tangential.mu;
     row.kn = c.K * c.n;
     row.kt1 = c.K * row.plane.tangent1;
     row.kt2 = c.K * row.plane.tangent2;

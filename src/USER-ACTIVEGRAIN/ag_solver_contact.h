@@ -13,7 +13,7 @@ struct SolverContact {
   int body1 = 0, body2 = 0;       // solver body indices; the normal points from 1 to 2
   Vec3 r1, r2;                    // lever arms: contact point minus each body's centre of mass
   Vec3 n;                         // unit normal
-  ContactMaterial material;
+  ContactModel model;
   double min_separation = 0.0;    // normal velocity the contact must at least leave with
   // Relative velocity the contact gains from other forces (gravity, a wall's acceleration)
   // between the time of the bodies' velocities and the moment it closes: the law acts on the

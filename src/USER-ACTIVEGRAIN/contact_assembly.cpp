@@ -13,21 +13,19 @@
 #include <cmath>
 
 using namespace LAMMPS_NS;
-using ActiveGrain::ContactMaterial;
+using ActiveGrain::ContactModel;
 using ActiveGrain::Vec3;
 
 // The near pairs are those within this fraction of the neighbor skin.
 static constexpr double NEAR_MARGIN = 0.25;
 
 void ContactAssembly::init(double overlap_beta, double overlap_slop, ContactOrder contact_order,
-                           double **pair_restitution, double **pair_friction,
-                           const std::vector<ImpulseWall *> &wall_fixes)
+                           const PairContactModels *pair_models, const std::vector<ImpulseWall *> &wall_fixes)
 {
   beta = overlap_beta;
   slop = overlap_slop;
   order = contact_order;
-  restitution = pair_restitution;
-  friction = pair_friction;
+  models = pair_models;
   walls = wall_fixes;
 }
 
@@ -81,8 +79,7 @@ void ContactAssembly::gather_pair_contacts(NeighList *list)
     const int bi = bodies.body_of_atom(i), bj = bodies.body_of_atom(j);
     if (bi == bj) continue;    // constituents of one rigid body, or a bead and its image
     if (solver.body(bi).is_static() && solver.body(bj).is_static()) continue;    // both frozen
-    const ContactMaterial material{restitution[type[i]][type[j]], friction[type[i]][type[j]]};
-    add_contact(bi, bj, {i, j, nullptr, 0, point, Vec3(), 0.0, Vec3()}, n, gap, material,
+    add_contact(bi, bj, {i, j, nullptr, 0, point, Vec3(), 0.0, Vec3()}, n, gap, models->of(type[i], type[j]),
                 bodies.lever_arm(i, bi, point), bodies.lever_arm(j, bj, point),
                 bodies.gravity_of_atom(j) - bodies.gravity_of_atom(i));
   }
@@ -103,14 +100,14 @@ void ContactAssembly::gather_wall_contacts()
       if (solver.body(b).is_static()) continue;    // a frozen atom
       const int w = solver.add_body(ActiveGrain::RigidBodyState::wall(c.wall_velocity));
       add_contact(w, b, {-1, c.atom, wall, c.surface, c.point, Vec3(), 0.0, Vec3()}, c.normal, c.gap,
-                  c.material, Vec3(), bodies.lever_arm(c.atom, b, c.point), bodies.gravity_of_atom(c.atom),
+                  c.model, Vec3(), bodies.lever_arm(c.atom, b, c.point), bodies.gravity_of_atom(c.atom),
                   c.wall_acceleration);
     }
   }
 }
 
 void ContactAssembly::add_contact(int body1, int body2, const AtomContact &atoms, const Vec3 &n, double gap,
-                                  const ContactMaterial &material, const Vec3 &r1, const Vec3 &r2,
+                                  const ContactModel &model, const Vec3 &r1, const Vec3 &r2,
                                   const Vec3 &atom_acceleration, const Vec3 &wall_acceleration)
 {
   const Vec3 u = solver.body(body2).velocity_at_arm(r2) - solver.body(body1).velocity_at_arm(r1);
@@ -127,7 +124,7 @@ void ContactAssembly::add_contact(int body1, int body2, const AtomContact &atoms
   located.approach = prediction.approach;
   located.velocity_before = u;
   if (atoms.wall) located.wall_velocity = solver.body(body1).v + wall_acceleration * prediction.time_to_contact;
-  found.push_back({shuffle, identity, body1, body2, r1, r2, n, material, prediction, located});
+  found.push_back({shuffle, identity, body1, body2, r1, r2, n, model, prediction, located});
   step.overlap = std::max(step.overlap, -gap);
 }
 
@@ -159,7 +156,7 @@ void ContactAssembly::add_found_contacts()
             [this](const SortKey &a, const SortKey &b) { return precedes(a.key, b.key, order); });
   for (const SortKey &key : sort_keys) {
     const FoundContact &c = found[key.index];
-    const int k = solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.material,
+    const int k = solver.add_contact_arms(c.body1, c.body2, c.r1, c.r2, c.n, c.model,
                                           c.prediction.min_separation, c.prediction.gain,
                                           c.prediction.time_to_contact);
     atom_contacts.push_back(c.atoms);

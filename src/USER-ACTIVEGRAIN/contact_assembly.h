@@ -1,6 +1,6 @@
 // This step's contacts for pair gran/impulse, from LAMMPS's arrays to the contact solver: the
 // near pairs and the wall fixes' contacts whose gaps close within the step (predictive contact),
-// each with its bodies, lever arms and material, handed to the solver in an order given by the
+// each with its bodies, lever arms and contact model, handed to the solver in an order given by the
 // contacts' identity, and what each solver contact means for the atoms.
 #pragma once
 
@@ -61,7 +61,7 @@ class ContactAssembly : protected Pointers {
   }
 
   // The pair style's settings and coefficients (per type pair), and the wall fixes.
-  void init(double beta, double slop, ContactOrder order, double **restitution, double **friction,
+  void init(double beta, double slop, ContactOrder order, const PairContactModels *models,
             const std::vector<ImpulseWall *> &walls);
   // Each atom's spin speed and this step's extremes; maxrad: the neighbor-cutoff radius per type.
   void scan_atoms(const double *maxrad);
@@ -81,7 +81,7 @@ class ContactAssembly : protected Pointers {
     ContactIdentity identity;
     int body1, body2;
     ActiveGrain::Vec3 r1, r2, n;
-    ActiveGrain::ContactMaterial material;
+    ActiveGrain::ContactModel model;
     ActiveGrain::ContactPrediction prediction;
     AtomContact atoms;
   };
@@ -93,7 +93,7 @@ class ContactAssembly : protected Pointers {
   void gather_pair_contacts(class NeighList *list);
   void gather_wall_contacts();
   void add_contact(int body1, int body2, const AtomContact &atoms, const ActiveGrain::Vec3 &n,
-                   double gap, const ActiveGrain::ContactMaterial &material,
+                   double gap, const ActiveGrain::ContactModel &model,
                    const ActiveGrain::Vec3 &r1, const ActiveGrain::Vec3 &r2,
                    const ActiveGrain::Vec3 &atom_acceleration,
                    const ActiveGrain::Vec3 &wall_acceleration = ActiveGrain::Vec3());
@@ -107,7 +107,7 @@ class ContactAssembly : protected Pointers {
   double beta = 0.0;    // overlaps leave at >= beta * (overlap - slop) / dt
   double slop = 0.0;
   ContactOrder order = ContactOrder::SHUFFLE;
-  double **restitution = nullptr, **friction = nullptr;
+  const PairContactModels *models = nullptr;    // per type pair
   std::vector<ImpulseWall *> walls;
 
   std::vector<double> spin_speed;    // |omega| radius of each atom, this step

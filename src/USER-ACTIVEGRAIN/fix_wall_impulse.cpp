@@ -47,7 +47,7 @@ enum ClockRecord { CLOCK_TIME = 0, CLOCK_STEP, CLOCK_DT, FILE_STEP, NCLOCK };
 FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), z0(0.0), gap(0.0), amplitude(0.0), frequency(0.0), phase(0.0),
     lid(Lid::NONE), own_clock(false), clock_time(0.0), clock_dt(0.0), clock_step(0), rough_slope(0.0),
-    rough_length(0.0), rough_seed(0), materials(lmp, STYLE)
+    rough_length(0.0), rough_seed(0), models(lmp, STYLE)
 {
   if (narg < 5 || strcmp(arg[3], "zlo") != 0)
     error->all(FLERR, "{}: expected 'zlo Z0' after the style name", STYLE);
@@ -56,7 +56,7 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
   Lid lid_motion = Lid::MOVING;
   int iarg = 5;
   while (iarg < narg) {
-    const int next = materials.parse(narg, arg, iarg);
+    const int next = models.parse(narg, arg, iarg);
     if (next != iarg) { iarg = next; continue; }
     const std::string key = arg[iarg];
     if (key == "gap") {
@@ -95,7 +95,7 @@ FixWallImpulse::FixWallImpulse(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "{}: unknown keyword {}", STYLE, key);
     }
   }
-  materials.check_complete();
+  models.check_complete();
   if (lid_motion == Lid::FIXED && !lid_given)
     error->all(FLERR, "{}: lid fixed needs a gap", STYLE);
   lid = lid_given ? lid_motion : Lid::NONE;
@@ -300,7 +300,7 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
       const double base_gap = (centre.z - zb - below.height) * n_base.z - r;
       if (may_close(base_gap, vb))
         contacts.push_back({i, BASE, n_base, centre - n_base * r, base_gap, Vec3(0, 0, vb), Vec3(0, 0, ab),
-                            materials.of_type(type[i])});
+                            models.of_type(type[i])});
     }
     if (lid == Lid::NONE || surely_out_of_reach(surface[LID], zlid - centre.z, vlid)) continue;
     const ActiveGrain::SurfacePoint above = surface[LID].at(centre.x, centre.y);
@@ -308,7 +308,7 @@ void FixWallImpulse::find_wall_contacts(double reach, const std::vector<char> &a
     const double lid_gap = (zlid + above.height - centre.z) * -n_lid.z - r;
     if (may_close(lid_gap, vlid))
       contacts.push_back({i, LID, n_lid, centre - n_lid * r, lid_gap, Vec3(0, 0, vlid), Vec3(0, 0, alid),
-                          materials.of_type(type[i])});
+                          models.of_type(type[i])});
   }
 }
 

@@ -60,7 +60,7 @@ class FixWallImpulse : public Fix, public ImpulseWall {
   double rough_slope, rough_length;
   int rough_seed;
   ActiveGrain::RoughSurface surface[NUM_SURFACES];
-  WallMaterials materials;
+  WallContactModels models;
 };
 
 }    // namespace LAMMPS_NS

@@ -28,7 +28,7 @@ enum { REGION_SURFACE = 0, NUM_SURFACES };
 
 /* fix ID group wall/impulse/region REGION-ID e E mu MU [type T E MU] */
 FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), region(nullptr), materials(lmp, STYLE), motion_reset(false)
+    Fix(lmp, narg, arg), ImpulseWall(this, NUM_SURFACES), region(nullptr), models(lmp, STYLE), motion_reset(false)
 {
   if (narg < 4) error->all(FLERR, "{}: expected a region ID after the style name", STYLE);
   region_id = arg[3];
@@ -36,11 +36,11 @@ FixWallImpulseRegion::FixWallImpulseRegion(LAMMPS *lmp, int narg, char **arg) :
   if (!region) error->all(FLERR, "{}: region {} does not exist", STYLE, region_id);
   int iarg = 4;
   while (iarg < narg) {
-    const int next = materials.parse(narg, arg, iarg);
+    const int next = models.parse(narg, arg, iarg);
     if (next == iarg) error->all(FLERR, "{}: unknown keyword {}", STYLE, arg[iarg]);
     iarg = next;
   }
-  materials.check_complete();
+  models.check_complete();
 
   // A moving region's wall velocity is its displacement since the last step: the restart file
   // keeps the last position (as fix wall/gran/region does).
@@ -122,7 +122,7 @@ void FixWallImpulseRegion::find_wall_contacts(double reach, const std::vector<ch
       const double gap = rc.r - radius[i];
       if (!ActiveGrain::gap_may_close(gap, Vec3(v[i]) - wall_velocity, spin_speed[i], update->dt)) continue;
       contacts.push_back({i, REGION_SURFACE, n, Vec3(x[i]) - n * radius[i], gap, wall_velocity, Vec3(),
-                          materials.of_type(type[i])});
+                          models.of_type(type[i])});
     }
   }
 }

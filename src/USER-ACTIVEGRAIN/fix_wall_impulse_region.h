@@ -32,7 +32,7 @@ class FixWallImpulseRegion : public Fix, public ImpulseWall {
  private:
   std::string region_id;
   class Region *region;
-  WallMaterials materials;
+  WallContactModels models;
   bool motion_reset;    // the restart file's region motion does not fit this region
 };
 

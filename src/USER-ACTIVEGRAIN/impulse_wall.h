@@ -6,6 +6,7 @@
 
 #include "ag_contact_prediction.h"
 #include "ag_impulse.h"
+#include "contact_models.h"
 #include "fix.h"
 #include "style_inputs.h"
 
@@ -26,7 +27,7 @@ class ImpulseWall {
     double gap;                             // surface separation, < 0 for an overlap
     ActiveGrain::Vec3 wall_velocity;        // velocity of the wall at the point
     ActiveGrain::Vec3 wall_acceleration;    // ... and its acceleration
-    ActiveGrain::ContactMaterial material;
+    ActiveGrain::ContactModel model;
   };
 
   // noexcept(false) like LAMMPS's Pointers, so that a Fix can also be an ImpulseWall.
@@ -95,28 +96,6 @@ class ImpulseWall {
   std::vector<ActiveGrain::Vec3> impacts;      // ... impacts, sum cos, sum sin of the drive phase
   std::vector<ActiveGrain::Vec3> energy;       // ... work, dissipated, overlap correction
   double drive_phase = 0.0, impact_speed = NO_IMPACTS, max_wall_speed = 0.0;
-};
-
-// Restitution and friction of a wall against each atom type: "e E mu MU" for all types, then
-// "type T E MU" (T may be a range like 2*3) to override some. Parsed by both wall fixes.
-class WallMaterials : protected Pointers {
- public:
-  WallMaterials(LAMMPS *lmp, const std::string &style_name) : Pointers(lmp), style(style_name) {}
-  // Consume a material keyword at arg[iarg]; returns the next index, or iarg if not one.
-  int parse(int narg, char **arg, int iarg);
-  // Errors unless every type has its coefficients.
-  void check_complete() const;
-  const ActiveGrain::ContactMaterial &of_type(int type) const { return per_type[type]; }
-
- private:
-  // e_all and mu_all before keywords e and mu give them (valid values are >= 0).
-  static constexpr double UNSET = -1.0;
-
-  ActiveGrain::ContactMaterial checked(const char *e, const char *mu) const;
-  std::string style;
-  std::vector<ActiveGrain::ContactMaterial> per_type;
-  std::vector<bool> type_set;    // per type: set by keyword type
-  double e_all = UNSET, mu_all = UNSET;
 };
 
 // Error unless the pair style that resolves wall contacts is defined and atoms have radii.

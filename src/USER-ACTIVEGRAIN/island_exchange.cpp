@@ -173,7 +173,7 @@ ContactSolver::Result IslandExchange::solve_own_islands(const ActiveGrain::Solve
     const CrossingContact &packed = gathered[k];
     const ActiveGrain::SolverContact &c = packed.contact;
     const int b1 = body(packed.key1, packed.body1), b2 = body(packed.key2, packed.body2);
-    const int added = gathered_solver.add_contact_arms(b1, b2, c.r1, c.r2, c.n, c.material, c.min_separation,
+    const int added = gathered_solver.add_contact_arms(b1, b2, c.r1, c.r2, c.n, c.model, c.min_separation,
                                                        c.gain, c.time);
     gathered_solver.set_key(added, c.key);
     own_contacts.push_back(k);

@@ -38,7 +38,7 @@ static constexpr double SI_LARGE_DIAMETER = 0.5;
 static constexpr double SI_SMALL_GRAVITY = 2.0;
 
 PairGranImpulse::PairGranImpulse(LAMMPS *lmp) :
-    Pair(lmp), restitution(nullptr), friction(nullptr),
+    Pair(lmp), models(lmp),
     maxrad(nullptr), ghost_pairs(false), ranks(lmp), near(lmp), bodies(lmp, solver, ranks),
     assembly(lmp, solver, bodies, ranks, near), exchange(lmp), delivery(lmp), carry(lmp), diagnostics(lmp, STYLE)
 {
@@ -61,8 +61,6 @@ PairGranImpulse::~PairGranImpulse()
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
-    memory->destroy(restitution);
-    memory->destroy(friction);
     delete[] maxrad;
   }
   delete[] pvector;
@@ -74,8 +72,7 @@ void PairGranImpulse::allocate()
   const int n = atom->ntypes + 1;
   memory->create(setflag, n, n, "pair:setflag");
   memory->create(cutsq, n, n, "pair:cutsq");
-  memory->create(restitution, n, n, "pair:restitution");
-  memory->create(friction, n, n, "pair:friction");
+  models.allocate(atom->ntypes);
   maxrad = new double[n];
   for (int i = 0; i < n; i++)
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
@@ -94,14 +91,11 @@ void PairGranImpulse::coeff(int narg, char **arg)
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  const double e = utils::numeric(FLERR, arg[2], false, lmp);
-  const double mu = utils::numeric(FLERR, arg[3], false, lmp);
-  check_material(error, STYLE, e, mu);
+  const ActiveGrain::ContactModel model = parse_contact_model(lmp, STYLE, arg + 2);
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
     for (int j = std::max(jlo, i); j <= jhi; j++) {
-      restitution[i][j] = e;
-      friction[i][j] = mu;
+      models.set(i, j, model);
       setflag[i][j] = 1;
       count++;
     }
@@ -122,7 +116,7 @@ void PairGranImpulse::init_style()
   find_type_radii();
   check_deck();
   warn_silent_inputs(lmp, STYLE, warned_inputs, style_settings.slop);
-  assembly.init(style_settings.beta, style_settings.slop, style_settings.order, restitution, friction, walls);
+  assembly.init(style_settings.beta, style_settings.slop, style_settings.order, &models, walls);
 }
 
 // What this style cannot do, refused before a run: other integrators than velocity Verlet, and
@@ -281,13 +275,8 @@ void PairGranImpulse::reset_dt() { carry.rescale_for_dt(); }
 
 double PairGranImpulse::init_one(int i, int j)
 {
-  if (setflag[i][j] == 0) {
-    // Mixing: geometric means of the like-type coefficients.
-    restitution[i][j] = std::sqrt(restitution[i][i] * restitution[j][j]);
-    friction[i][j] = std::sqrt(friction[i][i] * friction[j][j]);
-  }
-  restitution[j][i] = restitution[i][j];
-  friction[j][i] = friction[i][j];
+  if (setflag[i][j] == 0) models.mix(i, j);
+  models.set(j, i, models.of(i, j));
   return maxrad[i] + maxrad[j];
 }
 
@@ -397,10 +386,7 @@ void PairGranImpulse::write_restart(FILE *fp)
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
-      if (setflag[i][j]) {
-        fwrite(&restitution[i][j], sizeof(double), 1, fp);
-        fwrite(&friction[i][j], sizeof(double), 1, fp);
-      }
+      if (setflag[i][j]) models.write_restart(fp, i, j);
     }
 }
 
@@ -413,14 +399,7 @@ void PairGranImpulse::read_restart(FILE *fp)
     for (int j = i; j <= atom->ntypes; j++) {
       if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
-      if (setflag[i][j]) {
-        if (me == 0) {
-          utils::sfread(FLERR, &restitution[i][j], sizeof(double), 1, fp, nullptr, error);
-          utils::sfread(FLERR, &friction[i][j], sizeof(double), 1, fp, nullptr, error);
-        }
-        MPI_Bcast(&restitution[i][j], 1, MPI_DOUBLE, 0, world);
-        MPI_Bcast(&friction[i][j], 1, MPI_DOUBLE, 0, world);
-      }
+      if (setflag[i][j]) models.read_restart(fp, i, j);
     }
 }
 
@@ -437,9 +416,7 @@ void PairGranImpulse::read_restart_settings(FILE *fp)
 void *PairGranImpulse::extract(const char *name, int &dim)
 {
   dim = 2;
-  if (strcmp(name, "e") == 0) return (void *) restitution;
-  if (strcmp(name, "mu") == 0) return (void *) friction;
-  return nullptr;
+  return (void *) models.extract(name);
 }
 
 double PairGranImpulse::memory_usage()

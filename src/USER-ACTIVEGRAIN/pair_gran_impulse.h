@@ -90,7 +90,7 @@ class PairGranImpulse : public Pair {
   double largest_wall_acceleration() const;
 
   GranImpulseSettings style_settings;    // the keywords of pair_style
-  double **restitution, **friction;
+  PairContactModels models;    // per type pair
   double *maxrad;    // largest radius per type, present or to be inserted (neighbor cutoff)
 
   std::vector<RigidBodyProvider *> providers;

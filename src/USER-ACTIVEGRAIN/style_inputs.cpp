@@ -20,13 +20,6 @@ static constexpr int GROUP_ALL_BIT = 1;
 // A slop above this fraction of the smallest particle diameter gets a WARNING.
 static constexpr double LARGEST_SLOP_DIAMETERS = 0.1;
 
-void LAMMPS_NS::check_material(Error *error, const std::string &style, double e, double mu)
-{
-  if (e < 0.0 || e > 1.0)
-    error->all(FLERR, "{}: restitution coefficient e = {} must be in [0, 1]", style, e);
-  if (mu < 0.0) error->all(FLERR, "{}: friction coefficient mu = {} must be >= 0", style, mu);
-}
-
 double LAMMPS_NS::inserted_radius(LAMMPS *lmp, int type, int groupbit)
 {
   double largest = 0.0;

@@ -8,9 +8,6 @@
 
 namespace LAMMPS_NS {
 
-// Error unless e is in [0, 1] and mu >= 0.
-void check_material(Error *error, const std::string &style, double e, double mu);
-
 // Largest radius of the atoms of type `type` that fix pour or fix deposit will insert during a
 // run (0 if none), read as GRANULAR's pair styles read it (the fixes' extract("radius")).
 // With groupbit (a fix's group), only inserting fixes whose atoms join that group count.

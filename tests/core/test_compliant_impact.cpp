@@ -16,7 +16,7 @@ namespace {
 
 // A contact as the contact solver prepares one of an island.
 SolverContact island_contact(const std::vector<RigidBodyState> &bodies, int body1, int body2, const Vec3 &point,
-                             const Vec3 &n, const ContactMaterial &material)
+                             const Vec3 &n, const ContactModel &model)
 {
   SolverContact c;
   c.body1 = body1;
@@ -24,7 +24,7 @@ SolverContact island_contact(const std::vector<RigidBodyState> &bodies, int body
   c.r1 = point - bodies[body1].com;
   c.r2 = point - bodies[body2].com;
   c.n = n;
-  c.material = material;
+  c.model = model;
   c.K = contact_matrix(bodies[body1], c.r1, bodies[body2], c.r2);
   c.knn = dot(c.n, c.K * c.n);
   c.tangential = TangentialStep(c.K, c.n);

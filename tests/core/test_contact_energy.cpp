@@ -18,14 +18,14 @@ struct BeadOnWall {
   Vec3 wall_velocity;
   double kinetic_before;
 
-  BeadOnWall(double m, double a, const Vec3 &wall_v, ContactMaterial material, double min_separation = 0.0,
+  BeadOnWall(double m, double a, const Vec3 &wall_v, ContactModel model, double min_separation = 0.0,
              const Vec3 &spin = Vec3())
   {
     const double r = 1e-3;
     wall_velocity = wall_v;
     const int wall = solver.add_body(RigidBodyState::wall(wall_v));
     const int bead = solver.add_body(RigidBodyState::sphere(m, r, Vec3(0, 0, r), wall_v + Vec3(0.3 * a, 0, -a), spin));
-    solver.add_contact(wall, bead, Vec3(), UP, material, min_separation);
+    solver.add_contact(wall, bead, Vec3(), UP, model, min_separation);
     const ContactSolver::Contact &c = solver.contact(0);
     before = solver.body(bead).velocity_at_arm(c.r2) - solver.body(wall).velocity_at_arm(c.r1);
     approach = -dot(before, UP);

@@ -24,7 +24,7 @@ TEST(ContactSolver, SingleContactGivesExactlyTheLaw)
     const Vec3 c = b.com + random_unit(rng) * 0.5;
     Vec3 n = random_unit(rng);
     if (dot(b.velocity_at(c) - a.velocity_at(c), n) > 0) n = -n;
-    const ContactMaterial mat{0.6, 0.7};
+    const ContactModel mat{0.6, 0.7};
     ContactSolver solver;
     const int ia = solver.add_body(a);
     const int ib = solver.add_body(b);
@@ -52,7 +52,7 @@ RigidBodyState flat_rod()
   return rod;
 }
 
-ContactSolver line_contact(const RigidBodyState &rod, int n, const ContactMaterial &material,
+ContactSolver line_contact(const RigidBodyState &rod, int n, const ContactModel &model,
                            int resolution = ContactSolver::Settings().resolution)
 {
   ContactSolver solver;
@@ -60,7 +60,7 @@ ContactSolver line_contact(const RigidBodyState &rod, int n, const ContactMateri
   const int body = solver.add_body(rod);
   for (int k = 0; k < n; ++k) {
     const double x = n == 1 ? 0.0 : 1.8 * (2 * k - (n - 1)) / (n - 1);    // exactly symmetric
-    solver.add_contact(plate, body, Vec3(x, 0, 0), Vec3(0, 0, 1), material);
+    solver.add_contact(plate, body, Vec3(x, 0, 0), Vec3(0, 0, 1), model);
   }
   ContactSolver::Settings settings;
   settings.resolution = resolution;
@@ -93,19 +93,19 @@ TEST(ContactSolver, OneContactOfAnIslandGetsStrongesImpact)
         Vec3 n = random_unit(rng);
         const Vec3 n2 = random_unit(rng);
         if (dot(b.velocity_at(c) - plate.v, n) > 0) n = -n;
-        const ContactMaterial material{trial % 4 == 0 ? 0.0 : U(rng), mu * U(rng)};
+        const ContactModel model{trial % 4 == 0 ? 0.0 : U(rng), mu * U(rng)};
         if (dot(b.velocity_at(c2) - plate.v, n2) < 0.5) continue;    // must stay clear
         ContactSolver solver;
         solver.add_body(plate);
         solver.add_body(b);
-        solver.add_contact(0, 1, c, n, material);
-        solver.add_contact(0, 1, c2, n2, material);
+        solver.add_contact(0, 1, c, n, model);
+        solver.add_contact(0, 1, c2, n2, model);
         ContactSolver::Settings settings;
         settings.resolution = resolution;
         solver.solve(settings);
         ASSERT_FALSE(solver.contact(0).isolated);
         if (norm(solver.impulse(1)) > 0.0) continue;
-        const Vec3 expected = collision_impulse(plate, b, c, n, material);
+        const Vec3 expected = collision_impulse(plate, b, c, n, model);
         worst = std::max(worst, norm(solver.impulse(0) - expected) / norm(expected));
         ++cases;
       }
@@ -205,7 +205,7 @@ namespace {
 // above: contacts that share bodies, with slip that changes direction during the solve.
 struct Cluster {
   std::vector<RigidBodyState> bodies;
-  struct Touch { int body1, body2; Vec3 point, n; ContactMaterial material; double min_separation; };
+  struct Touch { int body1, body2; Vec3 point, n; ContactModel model; double min_separation; };
   std::vector<Touch> touches;
 };
 
@@ -225,7 +225,7 @@ Cluster random_cluster(std::mt19937 &rng, bool frictionless = false)
   rod.v = Vec3(0.3 * U(rng), 0.3 * U(rng), -0.3 - 0.5 * P(rng));
   rod.omega = Vec3(0.5 * U(rng), 0.5 * U(rng), 0.5 * U(rng));
   cl.bodies.push_back(rod);
-  const ContactMaterial plate{0.1 + 0.5 * P(rng), 0.03};    // the paper's rod-plate friction
+  const ContactModel plate{0.1 + 0.5 * P(rng), 0.03};    // the paper's rod-plate friction
   const int spheres = 2 + static_cast<int>(4 * P(rng));
   for (int k = 0; k < spheres; ++k) {
     const double s = -1.8 + 3.6 * k / (spheres - 1);
@@ -244,7 +244,7 @@ Cluster random_cluster(std::mt19937 &rng, bool frictionless = false)
     cl.touches.push_back({0, bead, point + side * 0.5 - Vec3(0, 0, 0.5), Vec3(0, 0, 1), {0.3, 0.01}, 0.0});
   }
   if (frictionless)
-    for (auto &t : cl.touches) t.material.mu = 0.0;
+    for (auto &t : cl.touches) t.model.tangential.mu = 0.0;
   return cl;
 }
 
@@ -268,7 +268,7 @@ ContactSolver solve_in_order(const Cluster &cl, const std::vector<int> &order,
   for (const RigidBodyState &b : cl.bodies) solver.add_body(b);
   for (int k : order) {
     const Cluster::Touch &t = cl.touches[k];
-    solver.add_contact(t.body1, t.body2, t.point, t.n, t.material, t.min_separation);
+    solver.add_contact(t.body1, t.body2, t.point, t.n, t.model, t.min_separation);
   }
   ContactSolver::Settings settings;
   settings.resolution = resolution;
@@ -412,7 +412,7 @@ TEST(ContactSolver, AnIslandSolvedElsewhereLeavesTheOthersAsTheyWere)
       const int offset = solver.num_bodies();
       for (const RigidBodyState &b : cl.bodies) solver.add_body(b);
       for (const Cluster::Touch &t : cl.touches)
-        solver.add_contact(t.body1 + offset, t.body2 + offset, t.point, t.n, t.material, t.min_separation);
+        solver.add_contact(t.body1 + offset, t.body2 + offset, t.point, t.n, t.model, t.min_separation);
     };
     ContactSolver both, split, elsewhere;
     add(both, first);
@@ -460,7 +460,7 @@ TEST(ContactSolver, BeadChainDoesNotGainEnergyAndConservesMomentum)
       const Vec3 v = k == 0 ? Vec3(1.0, 0.3 * (U(rng) - 0.5), 0) : Vec3(0.1 * (U(rng) - 0.5), 0, 0);
       solver.add_body(RigidBodyState::sphere(0.5 + U(rng), r, Vec3(2 * r * k, 0.05 * (U(rng) - 0.5), 0), v, spin));
     }
-    const ContactMaterial mat{U(rng), U(rng)};
+    const ContactModel mat{U(rng), U(rng)};
     for (int k = 0; k + 1 < nbeads; ++k) {
       const Vec3 d = solver.body(k + 1).com - solver.body(k).com;
       const Vec3 n = d / norm(d);
@@ -528,7 +528,7 @@ TEST(ContactSolver, OverlapsInAnIslandOpenAtTheirMinimumSeparation)
 // gain of 0.2 towards the plate leaves at e (1 + 0.2) less the gain, without turning.
 TEST(ContactSolver, GainIsPartOfTheApproach)
 {
-  const ContactMaterial material{0.5, 0.3};
+  const ContactModel model{0.5, 0.3};
   for (int n : {1, 5}) {
     RigidBodyState rod = flat_rod();
     rod.v = Vec3(0, 0, -1);
@@ -537,7 +537,7 @@ TEST(ContactSolver, GainIsPartOfTheApproach)
     const int body = solver.add_body(rod);
     for (int k = 0; k < n; ++k) {
       const double x = n == 1 ? 0.0 : 1.8 * (2 * k - (n - 1)) / (n - 1);
-      solver.add_contact(plate, body, Vec3(x, 0, 0), Vec3(0, 0, 1), material, 0.0, Vec3(0, 0, -0.2));
+      solver.add_contact(plate, body, Vec3(x, 0, 0), Vec3(0, 0, 1), model, 0.0, Vec3(0, 0, -0.2));
     }
     solver.solve();
     const double tolerance = n == 1 ? 1e-12 : 1e-3;    // the compliant impact's resolution
@@ -552,7 +552,7 @@ namespace {
 // centre (x = 0) and at the nose (x = 1.8), which close at the given times of a step of 1.
 struct TwoContactLanding {
   RigidBodyState rod = flat_rod();
-  ContactMaterial material{0.5, 0.0};
+  ContactModel model{0.5, 0.0};
   double centre_time = 0.1, nose_time = 0.6;
 
   Vec3 point(int k) const { return Vec3(k == 0 ? 0.0 : 1.8, 0, 0); }
@@ -561,8 +561,8 @@ struct TwoContactLanding {
     ContactSolver solver;
     const int plate = solver.add_body(RigidBodyState::wall(Vec3()));
     const int body = solver.add_body(rod);
-    solver.add_contact(plate, body, point(0), Vec3(0, 0, 1), material, 0.0, Vec3(), centre_time);
-    solver.add_contact(plate, body, point(1), Vec3(0, 0, 1), material, 0.0, Vec3(), nose_time);
+    solver.add_contact(plate, body, point(0), Vec3(0, 0, 1), model, 0.0, Vec3(), centre_time);
+    solver.add_contact(plate, body, point(1), Vec3(0, 0, 1), model, 0.0, Vec3(), nose_time);
     ContactSolver::Settings settings;
     settings.window = window;
     settings.step = 1.0;
@@ -587,20 +587,20 @@ TEST(ContactSolver, IslandContactsMeetInTheOrderTheyClose)
   TwoContactLanding landing;
   landing.rod.v = Vec3(0.2, 0, -1);
   landing.rod.omega = Vec3(0, 1.5, 0);
-  landing.material.mu = 0.3;
+  landing.model.tangential.mu = 0.3;
   landing.nose_time = 0.4;
   const ContactSolver solver = landing.solve(0.01);
   const RigidBodyState plate = RigidBodyState::wall(Vec3());
   RigidBodyState rod = landing.rod;
   const double nose_gap = approach_at(rod, landing.point(1)) * landing.nose_time;
-  const Vec3 first = collision_impulse(plate, rod, landing.point(0), Vec3(0, 0, 1), landing.material);
+  const Vec3 first = collision_impulse(plate, rod, landing.point(0), Vec3(0, 0, 1), landing.model);
   rod.apply_impulse(first, landing.point(0));
   const double nose_time =
       landing.centre_time + (nose_gap - approach_at(landing.rod, landing.point(1)) * landing.centre_time) /
                                 approach_at(rod, landing.point(1));
   ASSERT_GT(nose_time, landing.nose_time);    // the first impact slowed the nose: it closes later
   ASSERT_LT(nose_time, 1.0);
-  const Vec3 second = collision_impulse(plate, rod, landing.point(1), Vec3(0, 0, 1), landing.material);
+  const Vec3 second = collision_impulse(plate, rod, landing.point(1), Vec3(0, 0, 1), landing.model);
   rod.apply_impulse(second, landing.point(1));
   EXPECT_NEAR(norm(solver.impulse(0) - first), 0.0, 1e-12);
   EXPECT_NEAR(norm(solver.impulse(1) - second), 0.0, 1e-12);
@@ -624,10 +624,10 @@ TEST(ContactSolver, LaterContactsThatNoLongerCloseWithinTheStepWait)
     TwoContactLanding landing;
     landing.rod.v = Vec3(0, 0, -1);
     landing.rod.omega = Vec3(0, spin, 0);
-    landing.material.e = spin == 0.0 ? 0.5 : 0.0;
+    landing.model.normal.e = spin == 0.0 ? 0.5 : 0.0;
     const ContactSolver solver = landing.solve(0.01);
     const Vec3 first = collision_impulse(RigidBodyState::wall(Vec3()), landing.rod, landing.point(0),
-                                         Vec3(0, 0, 1), landing.material);
+                                         Vec3(0, 0, 1), landing.model);
     EXPECT_NEAR(norm(solver.impulse(0) - first), 0.0, 1e-12) << "spin " << spin;
     EXPECT_EQ(norm(solver.impulse(1)), 0.0) << "spin " << spin;
     EXPECT_GT(norm(landing.solve(ContactSolver::Settings().window).impulse(1)), 0.0) << "spin " << spin;
@@ -652,7 +652,7 @@ TEST(ContactSolver, ImpactsInOrderDoNotGainEnergyNorDependOnContactOrder)
       for (const RigidBodyState &b : cl.bodies) solver.add_body(b);
       for (int k : order) {
         const Cluster::Touch &t = cl.touches[k];
-        solver.add_contact(t.body1, t.body2, t.point, t.n, t.material, 0.0, Vec3(), times[k]);
+        solver.add_contact(t.body1, t.body2, t.point, t.n, t.model, 0.0, Vec3(), times[k]);
       }
       ContactSolver::Settings settings;
       settings.window = 0.05;

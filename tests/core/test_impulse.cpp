@@ -123,7 +123,7 @@ TEST(Impulse, RandomCollisionsNeverGainEnergyNorPenetrate)
     Vec3 n = random_unit(rng);
     const double un = dot(b.velocity_at(c) - a.velocity_at(c), n);
     if (un > 0) n = -n;
-    const ContactMaterial mat{U(rng), 2.0 * U(rng)};
+    const ContactModel mat{U(rng), 2.0 * U(rng)};
     const double E0 = kinetic_energy(a) + kinetic_energy(b);
     // Energy is measured in the frame of a moving wall (where the wall does no work).
     RigidBodyState a_rel = a, b_rel = b;
@@ -136,7 +136,7 @@ TEST(Impulse, RandomCollisionsNeverGainEnergyNorPenetrate)
     EXPECT_LE(E1_rel, E0_rel * (1 + 1e-12)) << "trial " << trial;
     EXPECT_GE(dot(J, n), 0.0);
     EXPECT_GE(normal_velocity(a, b, c, n), -1e-9 * std::sqrt(E0)) << "trial " << trial;
-    if (dot(b.velocity_at(c) - a.velocity_at(c), n) < 0.99 * mat.e * std::fabs(un)) ++integrated_like;
+    if (dot(b.velocity_at(c) - a.velocity_at(c), n) < 0.99 * mat.normal.e * std::fabs(un)) ++integrated_like;
   }
   // Many of these impacts end with a normal velocity below Newton's e|u_n|: slip stopped or
   // reversed and Stronge's energetic restitution took over; the test covers that branch.
@@ -204,7 +204,7 @@ TEST(Impulse, LawIsContinuousWhereTheTargetCrossesTheApproachSpeed)
     Vec3 u = b.velocity_at(c) - a.velocity_at(c);
     if (dot(u, n) > 0) n = -n;
     const Mat3 K = contact_matrix(a, c - a.com, b, c - b.com);
-    const ContactMaterial mat{U(rng), U(rng)};
+    const ContactModel mat{U(rng), U(rng)};
     const double approach = -dot(u, n);
     const double eps = 1e-8;
     auto J = [&](const Vec3 &uu, double target) { return contact_law_impulse(K, uu, n, mat, target); };
@@ -215,8 +215,8 @@ TEST(Impulse, LawIsContinuousWhereTheTargetCrossesTheApproachSpeed)
     const Vec3 slightly_opening = u + n * (approach + eps * approach);
     EXPECT_LT(jump(J(slightly_closing, target), J(slightly_opening, target)), 0.02) << "trial " << trial;
     // Newton's e where slip keeps its direction; below it where the integrated law took over.
-    const Vec3 Jn = J(u, mat.e * approach);
-    if (dot(u + K * Jn, n) < (1 - 1e-6) * mat.e * approach) ++integrated;
+    const Vec3 Jn = J(u, mat.normal.e * approach);
+    if (dot(u + K * Jn, n) < (1 - 1e-6) * mat.normal.e * approach) ++integrated;
   }
   EXPECT_GT(integrated, 50);    // the integrated branch is crossed too
   EXPECT_LE(jumps, 10);         // of 4000 crossings: the rest agree to 1e-6

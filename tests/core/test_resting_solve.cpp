@@ -34,7 +34,7 @@ struct Packing {
   struct Touch {
     int body1, body2;
     Vec3 point, n;
-    ContactMaterial material;
+    ContactModel model;
   };
   std::vector<Touch> touches;
 };
@@ -73,7 +73,7 @@ ContactSolver solve_packing(const Packing &p, const std::vector<int> &order, con
   for (const RigidBodyState &b : p.bodies) solver.add_body(b);
   for (int k : order) {
     const Packing::Touch &t = p.touches[k];
-    const int c = solver.add_contact(t.body1, t.body2, t.point, t.n, t.material);
+    const int c = solver.add_contact(t.body1, t.body2, t.point, t.n, t.model);
     solver.set_key(c, mix64(static_cast<std::uint64_t>(k)));    // the touch, whatever the order
   }
   const ContactSolver::Result r = solver.solve(settings);
@@ -318,7 +318,7 @@ TEST(RestingSolve, WithRestitutionPackingsGainNoEnergyAndDoNotDependOnContactOrd
     double largest = 0.0, kept = 0.0, plastic_kept = 0.0;
     for (int trial = 0; trial < 5; ++trial) {
       Packing p = hexagonal_packing(6, 8, 0.5 * RESTING_SPEED, mu, rng);
-      for (Packing::Touch &t : p.touches) t.material.e = U(rng);
+      for (Packing::Touch &t : p.touches) t.model.normal.e = U(rng);
       ContactSolver before;
       for (const RigidBodyState &b : p.bodies) before.add_body(b);
       const std::vector<int> forward = identity_order(p.touches.size());
@@ -367,15 +367,15 @@ TEST(RestingSolve, WithRestitutionSmallClustersOfMixedRestitutionGainNoEnergy)
       s.add_body(RigidBodyState::sphere(1.0, 0.5, p, Vec3(G(rng), G(rng), 0) * 0.5 * RESTING_SPEED, Vec3()));
     }
     const double mu = trial % 2 ? 0.0 : 0.3;
-    auto material = [&] { return ContactMaterial{U(rng) < 0.5 ? 1.0 : 0.0, mu}; };
+    auto model = [&] { return ContactModel{U(rng) < 0.5 ? 1.0 : 0.0, mu}; };
     for (int a = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b)
-        if (norm(x[b] - x[a]) < 1 + 1e-9) s.add_contact(a + 1, b + 1, (x[a] + x[b]) * 0.5, (x[b] - x[a]) / norm(x[b] - x[a]), material());
+        if (norm(x[b] - x[a]) < 1 + 1e-9) s.add_contact(a + 1, b + 1, (x[a] + x[b]) * 0.5, (x[b] - x[a]) / norm(x[b] - x[a]), model());
     for (int a = 0; a < n; ++a)
       if (U(rng) < 0.3) {
         const double angle = 2 * M_PI * U(rng);
         const Vec3 normal(std::cos(angle), std::sin(angle), 0);
-        s.add_contact(0, a + 1, x[a] - normal * 0.5, normal, material());
+        s.add_contact(0, a + 1, x[a] - normal * 0.5, normal, model());
       }
     for (int c = 0; c < s.num_contacts(); ++c) s.set_key(c, mix64(static_cast<std::uint64_t>(c)));
     for (int b = 0; b < s.num_bodies(); ++b) before.add_body(s.body(b));

@@ -15,7 +15,7 @@ namespace {
 
 // A rod (axis x, length 4.5, mass 2) lying flat 0.5 above a still plate, with contacts at
 // x = +-1.8 of its underside.
-ContactSolver flat_rod_on_plate(const Vec3 &v, const ContactMaterial &material, double min_separation,
+ContactSolver flat_rod_on_plate(const Vec3 &v, const ContactModel &model, double min_separation,
                                 const Vec3 &gain = Vec3(), double nose_time = 0.0)
 {
   const double m = 2.0, L = 4.5;
@@ -27,8 +27,8 @@ ContactSolver flat_rod_on_plate(const Vec3 &v, const ContactMaterial &material, 
   ContactSolver solver;
   const int plate = solver.add_body(RigidBodyState::wall(Vec3()));
   const int body = solver.add_body(rod);
-  solver.add_contact(plate, body, Vec3(-1.8, 0, 0), Vec3(0, 0, 1), material, min_separation);
-  solver.add_contact(plate, body, Vec3(1.8, 0, 0), Vec3(0, 0, 1), material, min_separation, gain, nose_time);
+  solver.add_contact(plate, body, Vec3(-1.8, 0, 0), Vec3(0, 0, 1), model, min_separation);
+  solver.add_contact(plate, body, Vec3(1.8, 0, 0), Vec3(0, 0, 1), model, min_separation, gain, nose_time);
   return solver;
 }
 

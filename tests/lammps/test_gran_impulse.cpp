@@ -5,8 +5,11 @@
 
 #include "atom.h"
 #include "error.h"
+#include "force.h"
+#include "pair.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 class GranImpulse : public BeadBox {
@@ -341,4 +344,32 @@ TEST_F(GranImpulse, ABeadCreatedBetweenRunsCarriesNoImpulseOfAnEarlierAtom)
   bead(0.008, 0.008, 0.0015, 0.0, 0.0, 0.0);
   command("run 1 post no");
   for (int id : {1, 2}) EXPECT_NEAR(value(fmt("vz[{}]", id)), -9.81e-5, 1e-15) << id;
+}
+
+// The contact models of pair_coeff: types without one of their own mix by geometric means, fix
+// adapt reaches each coefficient by name, and a restart file brings them back.
+TEST_F(GranImpulse, ContactModelsMixAdaptAndComeBackFromARestart)
+{
+  bead(0.003, 0.005, 0.001, 0.0, 0.0, 0.0, 1);
+  bead(0.006, 0.005, 0.001, 0.0, 0.0, 0.0, 2);
+  command("pair_style gran/impulse\npair_coeff 1 1 0.36 0.04\npair_coeff 2 2 0.25 0.09\n"
+          "fix nve all nve/sphere\nrun 0");
+  auto coefficient = [&](const char *name, int i, int j) {
+    int dim = 0;
+    auto **array = static_cast<double **>(lmp->force->pair->extract(name, dim));
+    EXPECT_EQ(dim, 2);
+    return array ? array[i][j] : NAN;
+  };
+  EXPECT_DOUBLE_EQ(coefficient("e", 1, 2), 0.3);
+  EXPECT_DOUBLE_EQ(coefficient("mu", 2, 1), 0.06);
+  int dim = 0;
+  EXPECT_EQ(lmp->force->pair->extract("nothing", dim), nullptr);
+  command("variable e_bb equal 0.5\nfix adapt all adapt 1 pair gran/impulse e 2 2 v_e_bb\nrun 1\nunfix adapt");
+  EXPECT_DOUBLE_EQ(coefficient("e", 2, 2), 0.5);
+  const std::string file = "contact-models.restart";
+  command("write_restart " + file + "\nclear\nplugin load " ACTIVEGRAIN_PLUGIN_FILE "\nread_restart " + file);
+  std::remove(file.c_str());
+  EXPECT_DOUBLE_EQ(coefficient("e", 1, 1), 0.36);
+  EXPECT_DOUBLE_EQ(coefficient("e", 2, 2), 0.5);
+  EXPECT_DOUBLE_EQ(coefficient("mu", 2, 2), 0.09);
 }
