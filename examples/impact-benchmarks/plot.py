@@ -1,6 +1,7 @@
 """Draw run.sh's results: /usr/bin/python3 plot.py RESULTS OUTDIR writes OUTDIR/test3.png ...
 test8.png. Each figure: the stick law (markers), its rigid-body answer (rigid_body.py, a line),
-stock LAMMPS Hertz-Mindlin (markers on a line, both of the test's materials where run) and, for
+the compliant law (triangles on a line), stock LAMMPS Hertz-Mindlin (squares on a line; both laws
+for both of the test's materials where run) and, for
 test 4, the experiment of Kharaz, Gorham and Salman (2001) (kharaz2001.dat)."""
 import pathlib
 import sys
@@ -26,7 +27,10 @@ CASES = {
     "test8": dict(R=0.1, xlabel="omegay before (rad/s)", grid=np.geomspace(0.1, 25, 600), first="case A"),
 }
 STYLE = {"stick": dict(marker="o", ls="none", ms=6, mfc="none", color="C0"),
+         "compliant": dict(marker="^", ls="-", ms=4, color="C4", lw=1),
          "stock-mindlin": dict(marker="s", ls="-", ms=4, color="C3", lw=1)}
+# the second material or case of a law (open markers, dashed)
+SECOND_COLOUR = {"stick": "C2", "compliant": "C9", "stock-mindlin": "C1"}
 
 
 def read(path):
@@ -47,14 +51,15 @@ def style(law):
     base = law.split(":")[0]
     s = dict(STYLE.get(base, dict(marker="^", ls="-", ms=4, lw=1)))
     if ":" in law:   # the second material or case: open markers, dashed
-        s.update(ls="--" if s.get("ls") != "none" else "none", mfc="none", color="C1" if base != "stick" else "C2")
+        s.update(ls="--" if s.get("ls") != "none" else "none", mfc="none", color=SECOND_COLOUR.get(base, "C1"))
     return s
 
 
 def label(law, first=""):
     """'stick (this package)', 'stock Hertz-Mindlin, nylon', ... for LAW or LAW:VARIANT."""
     base, _, variant = law.partition(":")
-    name = {"stick": "stick (this package)", "stock-mindlin": "stock Hertz-Mindlin"}.get(base, base)
+    name = {"stick": "stick (this package)", "compliant": "compliant (this package)",
+            "stock-mindlin": "stock Hertz-Mindlin"}.get(base, base)
     what = variant.replace("-", " ") or first
     return f"{name}, {what}" if what and not (base == "stick" and not variant and first != "case A") else name
 

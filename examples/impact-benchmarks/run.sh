@@ -15,7 +15,7 @@
 #   ./run.sh                   all cases (a few minutes)
 #   ./run.sh --short           three values of X per test, first material only (seconds)
 #   ./run.sh --plot DIR        also write DIR/results.txt and draw DIR/test*.png (plot.py)
-#   ./run.sh --laws "stick"    the laws to run (files law.NAME; default "stick stock-mindlin")
+#   ./run.sh --laws "stick"    the laws to run (files law.NAME; default "stick compliant stock-mindlin")
 #
 # The package's law runs with ACTIVEGRAIN_LMP (default build/lmp of this checkout); stock LAMMPS is
 # ACTIVEGRAIN_LMP_STOCK, by default the binary that the build/lmp wrapper runs, without the plugin.
@@ -25,7 +25,7 @@ ROOT=$(cd "$HERE/../.." && pwd)
 LMP=${ACTIVEGRAIN_LMP:-$ROOT/build/lmp}
 SHORT=no
 PLOT=""
-LAWS="stick stock-mindlin"
+LAWS="stick compliant stock-mindlin"
 while [ $# -gt 0 ]; do
   case "$1" in
     --short) SHORT=yes ;;

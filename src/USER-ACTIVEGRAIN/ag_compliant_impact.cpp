@@ -46,6 +46,7 @@ double CompliantImpact::Spring::turning_extra() const
 void CompliantImpact::resize(std::size_t num_bodies)
 {
   body_stiffness.assign(num_bodies, 0.0);
+  body_tangential.assign(num_bodies, 0.0);
   jacobi.resize(num_bodies);
 }
 
@@ -60,12 +61,18 @@ int CompliantImpact::solve(std::vector<RigidBodyState> &bodies, std::vector<Solv
   int substeps = 0;
   while (true) {
     const Engagement found = classify();
-    if (ended(found)) return substeps;
+    if (ended(found)) {
+      if (compliant) keep_within_start_energy();
+      return substeps;
+    }
     if (!found.engaged) {
       fly(found.to_contact);
       continue;
     }
-    if (substeps == settings.max_substeps) return -1;
+    if (substeps == settings.max_substeps) {
+      if (compliant) keep_within_start_energy();
+      return -1;
+    }
     ++substeps;
     const double dtau = substep_size(found.changed);
     kick(dtau);
@@ -86,11 +93,25 @@ void CompliantImpact::start(std::vector<RigidBodyState> &bodies, std::vector<Sol
   const std::size_t n = island.size();
   springs.assign(n, Spring());
   velocities.resize(n);
-  plastic = false;
+  plastic = compliant = false;
   for (std::size_t k = 0; k < n; ++k) {
     springs[k].e = contact(k).model.normal.e;
     plastic = plastic || springs[k].e == 0.0;
+    compliant = compliant || contact(k).model.tangential.compliant();
     velocities[k] = contact_velocity(k);
+  }
+  if (compliant) {
+    stretch.assign(n, Vec3());
+    start_velocity = velocities;
+    start_impulse.resize(n);
+    for (std::size_t k = 0; k < n; ++k) start_impulse[k] = contact(k).impulse;
+    const std::vector<int> &island_bodies = jacobi.island_bodies();
+    start_v.resize(island_bodies.size());
+    start_omega.resize(island_bodies.size());
+    for (std::size_t i = 0; i < island_bodies.size(); ++i) {
+      start_v[i] = bodies[island_bodies[i]].v;
+      start_omega[i] = bodies[island_bodies[i]].omega;
+    }
   }
   double speed = 0.0;
   for (const Vec3 &u : velocities) speed = std::max(speed, norm(u));
@@ -194,6 +215,21 @@ double CompliantImpact::stiffest_substep(bool with_turning)
     const SolverContact &c = contact(k);
     omega2 = std::max(omega2, c.knn * std::max(body_stiffness[c.body1], body_stiffness[c.body2]));
   }
+  if (!compliant) return phase_per_substep / std::sqrt(omega2);
+  // The tangential springs' oscillations, with K's trace across the plane (at least its largest
+  // eigenvalue there).
+  for (int b : jacobi.island_bodies()) body_tangential[b] = 0.0;
+  for (std::size_t k = 0; k < size(); ++k) {
+    const SolverContact &c = contact(k);
+    if (engaged_stiffness[k] <= 0.0 || !c.model.tangential.compliant()) continue;
+    for (int b : {c.body1, c.body2})
+      if (!(*solver_bodies)[b].is_static()) body_tangential[b] += c.model.tangential.stiffness_ratio;
+  }
+  for (std::size_t k = 0; k < size(); ++k) {
+    const SolverContact &c = contact(k);
+    const double across = c.K.m[0][0] + c.K.m[1][1] + c.K.m[2][2] - c.knn;
+    omega2 = std::max(omega2, across * std::max(body_tangential[c.body1], body_tangential[c.body2]));
+  }
   return phase_per_substep / std::sqrt(omega2);
 }
 
@@ -227,13 +263,30 @@ void CompliantImpact::kick(double dtau)
     const SolverContact &c = contact(k);
     const double dp = forces[k] * span;
     if (dp <= 0.0) continue;
-    bool stuck = false;
-    Vec3 friction = c.model.tangential.friction(c.tangential, velocities[k], dp, stuck);
-    if (stuck) friction *= 1.0 / jacobi.share(k);
-    jacobi.add(k, c.n * dp + friction);
+    jacobi.add(k, c.n * dp + tangential_impulse(k, dp, span));
   }
   jacobi.push();
   jacobi.move_bodies();
+}
+
+// Sticking law: the friction that stops the slip, shared among the loaded contacts of its bodies
+// (so that together they do not overshoot), else mu dp against it. Compliant law: the tangential
+// spring's push, its stretch first cut back to what mu times the normal force holds (the slider
+// slips).
+Vec3 CompliantImpact::tangential_impulse(std::size_t k, double dp, double span)
+{
+  const SolverContact &c = contact(k);
+  const TangentialModel &law = c.model.tangential;
+  if (!law.compliant()) {
+    bool stuck = false;
+    Vec3 friction = law.friction(c.tangential, velocities[k], dp, stuck);
+    if (stuck) friction *= 1.0 / jacobi.share(k);
+    return friction;
+  }
+  Vec3 &s = stretch[k];
+  const double held = law.limit(forces[k]), force = law.stiffness_ratio * norm(s);
+  if (force > held) s *= held / force;
+  return s * (-law.stiffness_ratio * span);
 }
 
 // A plastic contact (e = 0) passes its peak within the kick that turns its normal velocity: the
@@ -259,14 +312,44 @@ void CompliantImpact::take_back()
   for (int k : taken_back) springs[k].unloading = true;
 }
 
-// Only the pushed bodies' contacts change velocity (most of a large island's do not).
+// Only the pushed bodies' contacts change velocity (most of a large island's do not). A
+// tangential spring stretches with the slip while its contact is loaded and is slack otherwise.
 void CompliantImpact::drift(double dtau)
 {
   for (std::size_t k = 0; k < size(); ++k) {
     if (jacobi.moved(k)) velocities[k] = contact_velocity(k);
-    springs[k].compress(-dot(velocities[k], contact(k).n) * dtau);
+    const Vec3 &n = contact(k).n;
+    const double un = dot(velocities[k], n);
+    springs[k].compress(-un * dtau);
+    if (compliant) stretch[k] = engaged_stiffness[k] > 0.0 ? stretch[k] + (velocities[k] - n * un) * dtau : Vec3();
   }
   jacobi.forget_moved();
+}
+
+// The kinetic energy the impulses J add, sum J . (u_start + u_end) / 2 over the contacts, is
+// s a + s^2 b for the impulses scaled by s: where it is positive at s = 1, the largest s that adds
+// none (velocities and impulses are linear in s).
+void CompliantImpact::keep_within_start_energy()
+{
+  double a = 0.0, b = 0.0;
+  for (std::size_t k = 0; k < size(); ++k) {
+    const Vec3 J = contact(k).impulse - start_impulse[k];
+    a += dot(J, start_velocity[k]);
+    b += 0.5 * dot(J, contact_velocity(k) - start_velocity[k]);
+  }
+  if (a + b <= 0.0) return;
+  const double s = a < 0.0 && b > 0.0 ? -a / b : 0.0;
+  std::vector<RigidBodyState> &bodies = *solver_bodies;
+  const std::vector<int> &island_bodies = jacobi.island_bodies();
+  for (std::size_t i = 0; i < island_bodies.size(); ++i) {
+    RigidBodyState &body = bodies[island_bodies[i]];
+    body.v = start_v[i] + (body.v - start_v[i]) * s;
+    body.omega = start_omega[i] + (body.omega - start_omega[i]) * s;
+  }
+  for (std::size_t k = 0; k < size(); ++k) {
+    Vec3 &impulse = contact(k).impulse;
+    impulse = start_impulse[k] + (impulse - start_impulse[k]) * s;
+  }
 }
 
 }    // namespace ActiveGrain

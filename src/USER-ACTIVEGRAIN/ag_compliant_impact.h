@@ -16,6 +16,15 @@
 //     does not enter, only the sub-step size, which resolution sets; it shrinks to the stiff
 //     unloading's before a spring turns, so the rebound converges at second order;
 //   - springs with hysteresis and Coulomb friction never add energy.
+// With the compliant tangential law (ag_contact_model.h) a contact also has a tangential spring,
+// of stiffness ratio times the normal spring's loading stiffness, in series with its Coulomb
+// slider: its stretch follows the contact point's slip while the spring's force stays within mu
+// times the normal force, the slider takes the rest, and the spring pushes back, so that the slip
+// can reverse within the impact (Maw, Barber and Fawcett's rebound; Stronge's rough compliant
+// bodies). What is left in it when the normal force ends is dissipated. The sub-steps resolve
+// its oscillation too. An island with such springs ends no higher in kinetic energy than it began
+// (in the frames of the walls, as the energy ledger counts): where the sub-stepping's error would
+// add some, all its impulses are scaled back together to the largest fraction that adds none.
 #pragma once
 
 #include "ag_jacobi_step.h"
@@ -101,6 +110,13 @@ class CompliantImpact {
   std::vector<double> forces;               // its spring's force in the sub-step
   std::vector<char> loaded, turning;        // whether loaded, and close to its turn
   std::vector<int> taken_back;              // the plastic contacts take_back() pushes
+  // The compliant tangential law's: whether a contact of the island has it, the springs'
+  // stretches (per island contact), the tangential stiffness per body, and what the energy
+  // check at the end needs of the start (island bodies' velocities, the contacts' impulses).
+  bool compliant = false;
+  std::vector<Vec3> stretch;
+  std::vector<double> body_tangential;
+  std::vector<Vec3> start_v, start_omega, start_velocity, start_impulse;
 
   std::size_t size() const { return island_contacts->size(); }
   SolverContact &contact(std::size_t k) const { return (*solver_contacts)[(*island_contacts)[k]]; }
@@ -108,6 +124,8 @@ class CompliantImpact {
   void count_loaded();
   double stiffest_substep(bool with_turning);
   bool find_turning(bool &changed);    // whether a spring turns; changed: if one started or stopped
+  Vec3 tangential_impulse(std::size_t k, double dp, double span);    // the friction of a kick
+  void keep_within_start_energy();
 };
 
 }    // namespace ActiveGrain

@@ -33,6 +33,8 @@ Vec3 TangentialModel::friction(const TangentialStep &step, const Vec3 &u, double
 std::string TangentialModel::invalid() const
 {
   if (!(mu >= 0.0)) return "friction coefficient mu = " + shortest(mu) + " must be >= 0";
+  if (compliant() && !(stiffness_ratio > 0.0 && std::isfinite(stiffness_ratio)))
+    return "tangential compliant stiffness ratio = " + shortest(stiffness_ratio) + " must be > 0";
   return {};
 }
 
@@ -40,6 +42,8 @@ void ContactModel::to_coeffs(double *coeffs) const
 {
   coeffs[0] = normal.e;
   coeffs[1] = tangential.mu;
+  coeffs[2] = tangential.compliant() ? 1.0 : 0.0;
+  coeffs[3] = tangential.stiffness_ratio;
 }
 
 ContactModel ContactModel::from_coeffs(const double *coeffs)
@@ -47,16 +51,26 @@ ContactModel ContactModel::from_coeffs(const double *coeffs)
   ContactModel model;
   model.normal.e = coeffs[0];
   model.tangential.mu = coeffs[1];
+  model.tangential.law = coeffs[2] != 0.0 ? TangentialLaw::COMPLIANT : TangentialLaw::STICK;
+  model.tangential.stiffness_ratio = coeffs[3];
   return model;
 }
 
+// The laws mix too: a pair is compliant if either type is, with the geometric mean of the ratios
+// of the compliant ones.
 ContactModel ContactModel::mixed(const ContactModel &a, const ContactModel &b)
 {
-  double ca[NUM_COEFFS], cb[NUM_COEFFS], mean[NUM_COEFFS];
-  a.to_coeffs(ca);
-  b.to_coeffs(cb);
-  for (int k = 0; k < NUM_COEFFS; ++k) mean[k] = std::sqrt(ca[k] * cb[k]);
-  return from_coeffs(mean);
+  ContactModel mean;
+  mean.normal.e = std::sqrt(a.normal.e * b.normal.e);
+  mean.tangential.mu = std::sqrt(a.tangential.mu * b.tangential.mu);
+  const TangentialModel &ta = a.tangential, &tb = b.tangential;
+  if (ta.compliant() || tb.compliant()) {
+    mean.tangential.law = TangentialLaw::COMPLIANT;
+    mean.tangential.stiffness_ratio = !ta.compliant() ? tb.stiffness_ratio
+        : !tb.compliant()                             ? ta.stiffness_ratio
+                                                      : std::sqrt(ta.stiffness_ratio * tb.stiffness_ratio);
+  }
+  return mean;
 }
 
 std::string ContactModel::invalid() const

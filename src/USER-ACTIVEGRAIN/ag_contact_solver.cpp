@@ -59,7 +59,7 @@ void ContactSolver::prepare()
   for (Contact &c : contacts) {
     if (c.solved_elsewhere) continue;
     c.isolated = alone(c.body1) && alone(c.body2);
-    if (c.isolated) continue;
+    if (c.isolated && !c.model.tangential.compliant()) continue;
     c.knn = dot(c.n, c.K * c.n);
     c.tangential = TangentialStep(c.K, c.n);
   }
@@ -116,18 +116,36 @@ Vec3 ContactSolver::impact_alone(const Contact &c, double min_separation) const
   return contact_law_impulse(c.K, u, c.n, c.model, c.model.normal.target_separation(-dot(u, c.n), min_separation));
 }
 
-// A contact's whole impulse by Stronge's law: on the bodies, acting when it closes.
-void ContactSolver::solve_alone(Contact &c, double min_separation)
+// A contact's whole impulse by Stronge's law: on the bodies, acting when it closes. With the
+// compliant tangential law the impact is integrated (a compliant impact of one contact); an
+// overlap it leaves opening slower than min_separation is then pushed open.
+void ContactSolver::solve_alone(int k, double min_separation, const Settings &settings)
 {
-  c.impulse = impact_alone(c, min_separation);
+  Contact &c = contacts[k];
+  if (!c.model.tangential.compliant()) {
+    c.impulse = impact_alone(c, min_separation);
+    apply_impulse(bodies, c, c.impulse);
+  } else {
+    c.impulse = Vec3();
+    alone.assign(1, k);
+    compliant_impact.solve(bodies, contacts, alone, settings);
+    const Vec3 u = relative_velocity(bodies, c);
+    const double shortfall = min_separation - dot(u, c.n);
+    if (shortfall > 0.0) {
+      const double dp = shortfall / c.knn;
+      bool stuck = false;
+      const Vec3 push = c.n * dp + c.model.tangential.friction(c.tangential, u, dp, stuck);
+      c.impulse += push;
+      apply_impulse(bodies, c, push);
+    }
+  }
   c.late = c.impulse * c.time;
-  apply_impulse(bodies, c, c.impulse);
 }
 
-void ContactSolver::solve_isolated()
+void ContactSolver::solve_isolated(const Settings &settings)
 {
-  for (Contact &c : contacts)
-    if (c.isolated) solve_alone(c, c.min_separation);
+  for (int k = 0; k < num_contacts(); ++k)
+    if (contacts[k].isolated) solve_alone(k, contacts[k].min_separation, settings);
 }
 
 // What the energy ledger (ag_contact_energy.h) reads of the solved bodies, kept with each contact
@@ -218,7 +236,7 @@ int ContactSolver::impacts_in_order(const std::vector<int> &island, const Settin
       impulse_before[k] = contacts[island[k]].impulse;
       fastest = std::max(fastest, approach[k]);
     }
-    if (wave.size() == 1) {
+    if (wave.size() == 1 && !contacts[wave[0]].model.tangential.compliant()) {
       Contact &c = contacts[wave[0]];
       const Vec3 J = impact_alone(c, 0.0);    // overlaps are opened after all impacts
       c.impulse += J;
@@ -255,7 +273,7 @@ int ContactSolver::solve_impacts_then_resting(const std::vector<int> &island, co
   for (int g = 0; g < groups && substeps >= 0; ++g) {
     const std::vector<int> &group = impact_islands[g];
     if (group.size() == 1) {    // Stronge's law, exactly (its overlap is opened below)
-      solve_alone(contacts[group[0]], 0.0);
+      solve_alone(group[0], 0.0, settings);
       continue;
     }
     const int s = solve_island(group, settings);
@@ -321,10 +339,10 @@ ContactSolver::Result ContactSolver::solve()
 ContactSolver::Result ContactSolver::solve(const Settings &settings)
 {
   prepare();
-  solve_isolated();
   compliant_impact.resize(bodies.size());
   overlap_step.resize(bodies.size());
   resting_solve.resize(bodies.size());
+  solve_isolated(settings);
   Result result;
   for (int k = 0; k < num_islands; ++k) {
     const std::vector<int> &island = islands[k];

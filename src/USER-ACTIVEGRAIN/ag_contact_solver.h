@@ -67,7 +67,8 @@ class ContactSolver {
                        const ContactModel &model, double min_separation = 0.0,
                        const Vec3 &gain = Vec3(), double time = 0.0);
 
-  // Isolated contacts by Stronge's law, then each island by compliant impacts in order and its
+  // Isolated contacts by Stronge's law (integrated as a compliant impact where the tangential
+  // law is compliant), then each island by compliant impacts in order and its
   // overlap correction. Updates the bodies' velocities.
   Result solve(const Settings &settings);
   Result solve();    // with the default settings
@@ -88,7 +89,7 @@ class ContactSolver {
  private:
   // The stages of solve().
   void prepare();
-  void solve_isolated();
+  void solve_isolated(const Settings &settings);
   void record_velocities_after();
   void find_islands();
   int group_by_bodies(const std::vector<int> &subset, std::vector<std::vector<int>> &groups);
@@ -99,7 +100,7 @@ class ContactSolver {
   double overlap_shortfall(const std::vector<int> &island, const Settings &settings) const;
 
   Vec3 impact_alone(const Contact &c, double min_separation) const;
-  void solve_alone(Contact &c, double min_separation);
+  void solve_alone(int c, double min_separation, const Settings &settings);
   void measure_approaches(const std::vector<int> &island);
   double closing_time(const Contact &c, double approach_speed, const Settings &settings) const;
 
@@ -122,6 +123,7 @@ class ContactSolver {
   std::vector<double> settled_below;        // the approach below which it waits
   std::vector<Vec3> impulse_before;         // its impulse before the present impact
   std::vector<int> wave;                    // the island contacts of one impact
+  std::vector<int> alone;                   // one contact, as an island of its own
 };
 
 }    // namespace ActiveGrain

@@ -13,7 +13,9 @@ using namespace LAMMPS_NS;
 static constexpr int MIN_RESOLUTION = 20;
 // Restart files: the settings' format, stored negative (the first format, without the window,
 // began with the resolution). The resting speed is stored as RESTING_AUTO for resting yes.
-static constexpr int RESTART_FORMAT = -6;
+// From format -7 on, the pair coefficients that follow carry the tangential law too.
+static constexpr int RESTART_FORMAT = -7;
+static constexpr int COEFFS_BEFORE_TANGENTIAL_LAW = 2;    // e, mu
 static constexpr double RESTING_AUTO = -1.0;
 
 void GranImpulseSettings::parse(LAMMPS *lmp, const char *style, int narg, char **arg)
@@ -112,6 +114,7 @@ void GranImpulseSettings::read_restart(LAMMPS *lmp, const char *style, FILE *fp)
       utils::sfread(FLERR, &solver.max_resting_sweeps, sizeof(int), 1, fp, nullptr, error);
     }
     if (format < -5) utils::sfread(FLERR, &restitution, sizeof(int), 1, fp, nullptr, error);
+    if (format >= -6) restart_model_coeffs = COEFFS_BEFORE_TANGENTIAL_LAW;
   }
   MPI_Comm world = lmp->world;
   MPI_Bcast(&solver.resolution, 1, MPI_INT, 0, world);

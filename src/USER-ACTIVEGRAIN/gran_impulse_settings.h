@@ -3,6 +3,7 @@
 // rest is how contacts are assembled (overlap correction, order).
 #pragma once
 
+#include "ag_contact_model.h"
 #include "ag_solver_settings.h"
 #include "contact_assembly.h"
 #include "pointers.h"
@@ -23,6 +24,9 @@ struct GranImpulseSettings {
   void parse(LAMMPS *lmp, const char *style, int narg, char **arg);
   void write_restart(FILE *fp) const;
   void read_restart(LAMMPS *lmp, const char *style, FILE *fp);    // rank 0 reads, all get it
+  // The contact models' coefficients per type pair in the restart file read_restart() read (files
+  // before the tangential law: e and mu only); rank 0's.
+  int restart_model_coeffs = ActiveGrain::ContactModel::NUM_COEFFS;
 };
 
 }    // namespace LAMMPS_NS

@@ -83,15 +83,15 @@ void PairGranImpulse::settings(int narg, char **arg)
   style_settings.parse(lmp, STYLE, narg, arg);
 }
 
-/* pair_coeff I J e mu */
+/* pair_coeff I J e mu [tangential stick|compliant R] */
 void PairGranImpulse::coeff(int narg, char **arg)
 {
-  if (narg != 4) error->all(FLERR, "{}: pair_coeff needs I J e mu", STYLE);
+  if (narg < 4) error->all(FLERR, "{}: pair_coeff needs I J e mu", STYLE);
   if (!allocated) allocate();
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  const ActiveGrain::ContactModel model = parse_contact_model(lmp, STYLE, arg + 2);
+  const ActiveGrain::ContactModel model = parse_contact_model(lmp, STYLE, narg - 2, arg + 2);
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
     for (int j = std::max(jlo, i); j <= jhi; j++) {
@@ -399,7 +399,7 @@ void PairGranImpulse::read_restart(FILE *fp)
     for (int j = i; j <= atom->ntypes; j++) {
       if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
-      if (setflag[i][j]) models.read_restart(fp, i, j);
+      if (setflag[i][j]) models.read_restart(fp, i, j, style_settings.restart_model_coeffs);
     }
 }
 

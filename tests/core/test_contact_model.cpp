@@ -59,3 +59,24 @@ TEST(ContactModel, CoefficientsRoundTripAndMixAsGeometricMeans)
   EXPECT_STREQ(ContactModel::COEFF_NAMES[0], "e");
   EXPECT_STREQ(ContactModel::COEFF_NAMES[1], "mu");
 }
+
+TEST(ContactModel, TheCompliantLawNeedsAPositiveRatioAndMixesWithTheStickingOne)
+{
+  ContactModel soft{{0.5}, {0.2}};
+  soft.tangential.law = TangentialLaw::COMPLIANT;
+  soft.tangential.stiffness_ratio = 0.0;
+  EXPECT_EQ(soft.invalid(), "tangential compliant stiffness ratio = 0 must be > 0");
+  soft.tangential.stiffness_ratio = 0.64;
+  EXPECT_EQ(soft.invalid(), "");
+  double coeffs[ContactModel::NUM_COEFFS];
+  soft.to_coeffs(coeffs);
+  EXPECT_TRUE(ContactModel::from_coeffs(coeffs).tangential.compliant());
+  EXPECT_EQ(ContactModel::from_coeffs(coeffs).tangential.stiffness_ratio, 0.64);
+  const ContactModel rigid{{0.5}, {0.2}}, both = ContactModel::mixed(soft, rigid);
+  EXPECT_TRUE(both.tangential.compliant());    // in series with a rigid one, the soft one counts
+  EXPECT_DOUBLE_EQ(both.tangential.stiffness_ratio, 0.64);
+  ContactModel other = soft;
+  other.tangential.stiffness_ratio = 0.25;
+  EXPECT_DOUBLE_EQ(ContactModel::mixed(soft, other).tangential.stiffness_ratio, 0.4);
+  EXPECT_FALSE(ContactModel::mixed(rigid, rigid).tangential.compliant());
+}

@@ -1,7 +1,7 @@
 """examples/impact-benchmarks/run.sh --short: the impact-level benchmarks of Chung and Ooi (2011)
 with this package's stick law against the rigid-body answers, worked out here from the bodies'
-inverse-mass matrix (not from the closed forms of the example's rigid_body.py), and stock LAMMPS
-Hertz-Mindlin run beside it. Tolerances: tests 4-8, velocities to 1e-6 of the case's speed before
+inverse-mass matrix (not from the closed forms of the example's rigid_body.py), its compliant law,
+and stock LAMMPS Hertz-Mindlin run beside them. Tolerances: tests 4-8, velocities to 1e-6 of the case's speed before
 the impact, spins to 1e-6 of that speed over the radius; tests 1-3, restitution and energy ratio
 to 1e-9."""
 import os
@@ -151,6 +151,28 @@ def test_stock_hertz_mindlin_runs_and_reverses_the_contact_point(results):
     assert x == 10 and vx - 0.0025 * w < -0.01       # incoming contact point moves +x
     x, vx, vz, w = oblique_rows(lines, "test6", "stock-mindlin")[1]
     assert x == 2 and vx - 0.1 * w > 0.01            # incoming contact point moves -x (0.1 * 2 m/s)
+
+
+def test_compliant_law_keeps_restitution_and_reverses_like_stock(results):
+    """The compliant law (tangential springs): the normal rebound is Stronge's to its sub-steps'
+    accuracy (tests 1-3, 1e-4) and its energy ratio e^2 at most; in test 4 at 10 degrees its
+    contact point leaves backwards, as stock's does, where the stick law's leaves at rest; at 60
+    degrees (sliding all through) it is the stick law's answer (1e-4 of the speed)."""
+    lines, _ = results
+    normal = [f for f in lines if f[0] in ("test1", "test2", "test3") and f[1] == "compliant"]
+    assert {f[0] for f in normal} == {"test1", "test2", "test3"}
+    for test, law, material, x, vin, vout, ratio, duration in normal:
+        e = float(x)
+        assert abs(float(vout) / float(vin) - e) < 1e-4, (test, material, x, vout)
+        assert float(ratio) <= e * e * (1 + 1e-4) + 1e-12, (test, material, x, ratio)
+    compliant = {row[0]: row[1:] for row in oblique_rows(lines, "test4", "compliant")}
+    stick = {row[0]: row[1:] for row in oblique_rows(lines, "test4", "stick")}
+    vx, vz, w = compliant[10]
+    assert vx - 0.0025 * w < -0.01                   # incoming contact point moves +x
+    assert np.allclose(compliant[60], stick[60], rtol=0, atol=1e-4 * 3.9 / np.array([1, 1, 0.0025]))
+    for test in ("test5", "test6", "test7", "test8"):
+        rows = oblique_rows(lines, test, "compliant")
+        assert len(rows) == 3 and np.all(np.isfinite(rows)), (test, rows)
 
 
 @pytest.mark.skipif(not shutil.which("/usr/bin/python3"), reason="no /usr/bin/python3")

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 class GranImpulse : public BeadBox {
  protected:
@@ -157,6 +158,13 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
   command("pair_style gran/impulse");
   EXPECT_NE(error_of("pair_coeff * * 1.2 0.1").find("Pair gran/impulse: restitution"), std::string::npos);
   EXPECT_NE(error_of("pair_coeff * * 0.3 -0.1").find("Pair gran/impulse: friction"), std::string::npos);
+  EXPECT_NE(error_of("pair_coeff * * 0.3 0.1 tangential compliant 0").find("Pair gran/impulse: tangential compliant "
+                                                                           "stiffness ratio = 0 must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_coeff * * 0.3 0.1 tangential compliant").find("needs its stiffness ratio"), std::string::npos);
+  EXPECT_NE(error_of("pair_coeff * * 0.3 0.1 tangential soft 1").find("tangential must be stick or compliant R, not 'soft'"),
+            std::string::npos);
+  EXPECT_NE(error_of("pair_coeff * * 0.3 0.1 spin 2").find("unknown pair_coeff keyword spin"), std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse resolution 5").find("Pair gran/impulse: resolution must be"),
             std::string::npos);
   EXPECT_NE(error_of("pair_style gran/impulse sweeps 8").find("keyword sweeps is gone"), std::string::npos);
@@ -180,6 +188,8 @@ TEST_F(GranImpulse, BadInputGivesClearErrors)
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 1.5 mu 0.1").find("Fix wall/impulse: restitution"),
             std::string::npos);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5 mu -1").find("Fix wall/impulse: friction"),
+            std::string::npos);
+  EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5 mu 0.1 tangential compliant -1").find("Fix wall/impulse: tangential compliant stiffness ratio"),
             std::string::npos);
   EXPECT_NE(error_of("fix w all wall/impulse zlo 0 e 0.5").find("Fix wall/impulse: no restitution"),
             std::string::npos);
@@ -352,7 +362,7 @@ TEST_F(GranImpulse, ContactModelsMixAdaptAndComeBackFromARestart)
 {
   bead(0.003, 0.005, 0.001, 0.0, 0.0, 0.0, 1);
   bead(0.006, 0.005, 0.001, 0.0, 0.0, 0.0, 2);
-  command("pair_style gran/impulse\npair_coeff 1 1 0.36 0.04\npair_coeff 2 2 0.25 0.09\n"
+  command("pair_style gran/impulse\npair_coeff 1 1 0.36 0.04\npair_coeff 2 2 0.25 0.09 tangential compliant 0.8\n"
           "fix nve all nve/sphere\nrun 0");
   auto coefficient = [&](const char *name, int i, int j) {
     int dim = 0;
@@ -362,6 +372,9 @@ TEST_F(GranImpulse, ContactModelsMixAdaptAndComeBackFromARestart)
   };
   EXPECT_DOUBLE_EQ(coefficient("e", 1, 2), 0.3);
   EXPECT_DOUBLE_EQ(coefficient("mu", 2, 1), 0.06);
+  EXPECT_EQ(coefficient("tangential", 1, 1), 0.0);    // sticking
+  EXPECT_EQ(coefficient("tangential", 1, 2), 1.0);    // compliant: type 2 is
+  EXPECT_DOUBLE_EQ(coefficient("stiffness_ratio", 1, 2), 0.8);
   int dim = 0;
   EXPECT_EQ(lmp->force->pair->extract("nothing", dim), nullptr);
   command("variable e_bb equal 0.5\nfix adapt all adapt 1 pair gran/impulse e 2 2 v_e_bb\nrun 1\nunfix adapt");
@@ -372,4 +385,41 @@ TEST_F(GranImpulse, ContactModelsMixAdaptAndComeBackFromARestart)
   EXPECT_DOUBLE_EQ(coefficient("e", 1, 1), 0.36);
   EXPECT_DOUBLE_EQ(coefficient("e", 2, 2), 0.5);
   EXPECT_DOUBLE_EQ(coefficient("mu", 2, 2), 0.09);
+  EXPECT_EQ(coefficient("tangential", 2, 2), 1.0);
+  EXPECT_DOUBLE_EQ(coefficient("stiffness_ratio", 2, 2), 0.8);
+}
+
+// Chung and Ooi's test 4 through LAMMPS (an aluminium-oxide sphere, 3.9 m/s at 20 degrees from the
+// normal onto a still plate, e 0.98, mu 0.092): with the compliant law on the plate its contact
+// point leaves backwards, as Kharaz, Gorham and Salman measured; the sticking law leaves it at rest.
+// The same through pair_coeff, a bead onto a bead frozen in place.
+TEST_F(GranImpulse, TheCompliantLawReversesTheContactPointOfAnObliqueImpact)
+{
+  const double R = 0.5e-3, speed = 3.9, a = 20.0 * M_PI / 180.0;
+  const double vx = speed * std::sin(a), vz = speed * std::cos(a);
+  const std::string ratio = "0.8024";    // Mindlin's 2 (1 - nu) / (2 - nu) at nu 0.33
+  auto omega_y = [&](int id) { return lmp->atom->omega[lmp->atom->map(id)][1]; };
+  for (const std::string &law : std::vector<std::string>{"", " tangential compliant " + ratio}) {
+    command("delete_atoms group all");
+    bead(0.005, 0.005, R + 1.5 * vz * 1e-5, vx, 0.0, -vz);
+    command("fix nve all nve/sphere\nfix plate all wall/impulse zlo 0.0 e 0.98 mu 0.092" + law + "\n" + PAIR + "run 5");
+    const int id = (int) lmp->atom->natoms;
+    const double point = value(fmt("vx[{}]", id)) - R * omega_y(id);
+    if (law.empty()) EXPECT_NEAR(point, 0.0, 1e-12 * speed);
+    else EXPECT_LT(point, -0.3 * vx);
+    command("unfix plate\nunfix nve");
+  }
+  command("delete_atoms group all");
+  bead(0.005, 0.005, R, 0.0, 0.0, 0.0, 2);
+  bead(0.005 + 2 * R * std::sin(a), 0.005, R + 2 * R * std::cos(a) + 1.5 * speed * 1e-5, 0.0, 0.0, -speed);
+  command("group frozen id " + std::to_string((int) lmp->atom->natoms - 1) + "\ngroup moving subtract all frozen\n"
+          "fix nve moving nve/sphere\nfix still frozen freeze\npair_style gran/impulse\n"
+          "pair_coeff * * 0.98 0.092 tangential compliant " + ratio + "\nrun 5");
+  const int id = (int) lmp->atom->natoms;
+  // The contact point's velocity along the surface (tangent t in the x-z plane, away from the normal).
+  const double nx = std::sin(a), nz = std::cos(a), tx = nz, tz = -nx;
+  const double v_in = -speed * tz;    // what the point brings along t (spin 0)
+  const double point_t = value(fmt("vx[{}]", id)) * tx + value(fmt("vz[{}]", id)) * tz -
+      R * omega_y(id) * (nz * tx - nx * tz);
+  EXPECT_LT(point_t, -0.3 * v_in);
 }
