@@ -1,7 +1,5 @@
 #include "ag_contact_model.h"
 
-#include "ag_impulse.h"
-
 #include <charconv>
 #include <cmath>
 

@@ -8,14 +8,13 @@
 #pragma once
 
 #include "ag_math.h"
+#include "ag_tangential_step.h"
 
 #include <algorithm>
 #include <string>
 #include <type_traits>
 
 namespace ActiveGrain {
-
-class TangentialStep;
 
 struct NormalModel {
   double e = 0.0;    // Stronge's energetic restitution: the restitution's work is e^2 of the compression's
