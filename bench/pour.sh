@@ -6,7 +6,8 @@
 #          mu 0.5) in place of the Hookean styles, at time step DT (default 0.02) with neighbor
 #          skin SKIN (default 0.5: at least 4 dt times the fastest grain), resting RESTING
 #          (default yes), resolution 50, slop SLOP (default 0.01), the resting solve's TOLERANCE
-#          (0.3) and MAX_SWEEPS (100)
+#          (0.3) and MAX_SWEEPS (100), the tangential law TANGENTIAL (default stick; "compliant
+#          0.2857" is stock's tangential over normal stiffness, hooke/history's 2/7)
 # Both runs of the example (pour 3000 grains for 25 time units, then 25 of chute flow). Prints,
 # per run and side: the loop's CPU seconds (its wall time times its CPU use), simulated time per
 # CPU second and ours over stock's, the heap's atoms, kinetic and rotational energy at the
@@ -40,11 +41,12 @@ runs() {
        /^Loop time of/ {t=$4; thermo=0} /% CPU use/ {split(last, f); print t*($1+0)/100, f[2], f[3], f[4], f[8]+0}' "$1"
 }
 
-echo "# $(date -u +%F) each run $span time units; stock dt 1e-4 ($stock_steps steps), ours dt $dt ($ours_steps steps); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# $(date -u +%F) each run $span time units; stock dt 1e-4 ($stock_steps steps), ours dt $dt ($ours_steps steps), tangential ${TANGENTIAL:-stick}; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 run stock -in "$here/in.pour-stock" -var steps "$stock_steps"
 run ours -in "$here/../examples/lammps-granular/in.pour" -var steps "$ours_steps" -var dt "$dt" \
     -var resting "${RESTING:-yes}" -var resolution "${RESOLUTION:-50}" -var skin "${SKIN:-0.5}" -var slop "${SLOP:-0.01}" \
-    -var tolerance "${TOLERANCE:-0.3}" -var max_sweeps "${MAX_SWEEPS:-100}" ${OURS_ARGS:-}
+    -var tolerance "${TOLERANCE:-0.3}" -var max_sweeps "${MAX_SWEEPS:-100}" -var tangential "${TANGENTIAL:-stick}" \
+    ${OURS_ARGS:-}
 paste <(runs "$work/stock.log") <(runs "$work/ours.log") | awk -v span=$span '
   BEGIN {split("pour chute", name)
          printf "%-6s %-9s %-9s %-7s %-7s %-7s %-10s %-10s %-6s %-9s %-9s %-6s %-8s\n", "run", "stock:s", "ours:s",

@@ -9,7 +9,8 @@ to a third of the run), the mean-squared displacement at 1 and 10 s (or the long
 local exponents, and the MSD of a persistent random walk at the mean speed along the axis with
 heading time tau (2 v^2 tau^2 (t/tau - 1 + exp(-t/tau))), to compare with the measured one.
 Usage, from this folder (minutes):
-    python3 calibrate.py [--rough 0.04,0.05,0.06,0.07] [--length 5e-6] [--seeds 8] [--time 30] [--dt 1e-5] [--resting no] [--lmp PATH]
+    python3 calibrate.py [--rough 0.04,0.05,0.06,0.07] [--length 5e-6] [--seeds 8] [--time 30] [--dt 1e-5] [--resting no]
+                         [--tangential stick|"compliant R"] [--lmp PATH]
     python3 calibrate.py --figure out/trajectories.png --rough 0.06 --time 60   # and a few trajectories
 """
 import argparse
@@ -65,12 +66,12 @@ def persistent_walk_msd(speed, tau, t):
     return 2 * speed ** 2 * tau ** 2 * (t / tau - 1 + np.exp(-t / tau))
 
 
-def measure_roughness(lmp, rough, length, seeds, time, dt=1e-5, resting="no"):
+def measure_roughness(lmp, rough, length, seeds, time, dt=1e-5, resting="no", tangential="stick"):
     tracks = []
     for seed in range(1, seeds + 1):
-        tag = f"cal_S{rough:g}_L{length:g}_dt{dt:g}_r{resting}_s{seed}"
+        tag = f"cal_S{rough:g}_L{length:g}_dt{dt:g}_r{resting}_t{tangential.replace(' ', '')}_s{seed}"
         measure.run_deck(lmp, tag, dt=dt, time=time + SETTLE, rough=rough, rough_length=length, seed=seed, nside=1,
-                         resting=resting)
+                         resting=resting, tangential=tangential)
         tracks += track(os.path.join(measure.HERE, "out", f"rods_{tag}.local"), dt)
     sample = tracks[0][0][1]
     speeds = np.concatenate([window_speeds(*tr) for tr in tracks])
@@ -115,17 +116,18 @@ def main():
     ap.add_argument("--time", type=float, default=30.0)
     ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--resting", default="no", help="pair gran/impulse resting (yes, newton, no or a speed)")
+    ap.add_argument("--tangential", default="stick", help='rod-plate tangential law: stick or "compliant R"')
     ap.add_argument("--lmp", default=measure.default_lmp())
     ap.add_argument("--figure", help="draw the trajectories of the first roughness into this file")
     a = ap.parse_args()
     print(f"Single rods on rough plates: {a.seeds} rods x {a.time:g} s each (after {SETTLE:g} s), dt {a.dt:g}, "
-          f"resting {a.resting}\n"
+          f"resting {a.resting}, tangential {a.tangential}\n"
           "Experiment (Kumar et al. 2014): speed along axis 3.6 +- 2.5 mm/s, persistent random walk\n")
     print("| rms slope | corr. length (mm) | speed along axis, 1-s windows (mm/s) | s.d. (mm/s) | in-plane speed (mm/s) "
           "| heading time (s) | MSD 1 s (mm^2) | MSD 10 s (mm^2) | PRW MSD 10 s (mm^2) | MSD exponent 0.1 s / 10 s |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for i, rough in enumerate(float(s) for s in a.rough.split(",")):
-        m = measure_roughness(a.lmp, rough, a.length, a.seeds, a.time, a.dt, a.resting)
+        m = measure_roughness(a.lmp, rough, a.length, a.seeds, a.time, a.dt, a.resting, a.tangential)
         print(f"| {rough:g} | {a.length * 1e3:g} | {m['mean'] * 1e3:+.2f} | {m['sd'] * 1e3:.2f} | {m['planar'] * 1e3:.2f} "
               f"| {m['tau']:.2f} | {m['msd1'] * 1e6:.2f} | {m['msd10'] * 1e6:.1f} | {m['prw10'] * 1e6:.1f} "
               f"| {m['slope01']:.2f} / {m['slope10']:.2f} |", flush=True)

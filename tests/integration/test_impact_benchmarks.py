@@ -83,6 +83,13 @@ def results(tmp_path_factory):
     return lines, done.stdout
 
 
+def normal_rows(lines, law):
+    """Tests 1-3's lines of a law: (test, law, material, x, vin, vout, ratio, duration), all three tests."""
+    normal = [f for f in lines if f[0] in ("test1", "test2", "test3") and f[1] == law]
+    assert {f[0] for f in normal} == {"test1", "test2", "test3"}
+    return normal
+
+
 def oblique_rows(lines, test, law):
     return [[float(v) for v in f[2:]] for f in lines if f[0] == test and f[1] == law]
 
@@ -124,8 +131,7 @@ def test_the_cases_stick_and_slide(results):
 
 def test_normal_impacts_keep_energy_and_restitution(results):
     lines, _ = results
-    normal = [f for f in lines if f[0] in ("test1", "test2", "test3") and f[1] == "stick"]
-    assert {f[0] for f in normal} == {"test1", "test2", "test3"}
+    normal = normal_rows(lines, "stick")
     for test, law, material, x, vin, vout, ratio, duration in normal:
         e = float(x)
         assert abs(float(vout) / float(vin) - e) < 1e-9, (test, material, x, vout)
@@ -159,9 +165,7 @@ def test_compliant_law_keeps_restitution_and_reverses_like_stock(results):
     contact point leaves backwards, as stock's does, where the stick law's leaves at rest; at 60
     degrees (sliding all through) it is the stick law's answer (1e-4 of the speed)."""
     lines, _ = results
-    normal = [f for f in lines if f[0] in ("test1", "test2", "test3") and f[1] == "compliant"]
-    assert {f[0] for f in normal} == {"test1", "test2", "test3"}
-    for test, law, material, x, vin, vout, ratio, duration in normal:
+    for test, law, material, x, vin, vout, ratio, duration in normal_rows(lines, "compliant"):
         e = float(x)
         assert abs(float(vout) / float(vin) - e) < 1e-4, (test, material, x, vout)
         assert float(ratio) <= e * e * (1 + 1e-4) + 1e-12, (test, material, x, ratio)
