@@ -6,6 +6,13 @@
 
 namespace ActiveGrain {
 
+namespace {
+
+// K n within this fraction of n.K.n of n: the normal and tangential motions do not couple.
+constexpr double DECOUPLED = 1.0e-9;
+
+}    // namespace
+
 void ContactSolver::clear()
 {
   bodies.clear();
@@ -117,8 +124,8 @@ Vec3 ContactSolver::impact_alone(const Contact &c, double min_separation) const
 }
 
 // A contact's whole impulse by Stronge's law: on the bodies, acting when it closes. With the
-// compliant tangential law the impact is integrated (a compliant impact of one contact); an
-// overlap it leaves opening slower than min_separation is then pushed open.
+// compliant tangential law the impact is integrated (a compliant impact of one contact, then
+// compliant_alone()).
 void ContactSolver::solve_alone(int k, double min_separation, const Settings &settings)
 {
   Contact &c = contacts[k];
@@ -126,20 +133,45 @@ void ContactSolver::solve_alone(int k, double min_separation, const Settings &se
     c.impulse = impact_alone(c, min_separation);
     apply_impulse(bodies, c, c.impulse);
   } else {
+    const Vec3 before = relative_velocity(bodies, c);
     c.impulse = Vec3();
     alone.assign(1, k);
     compliant_impact.solve(bodies, contacts, alone, settings);
-    const Vec3 u = relative_velocity(bodies, c);
-    const double shortfall = min_separation - dot(u, c.n);
-    if (shortfall > 0.0) {
-      const double dp = shortfall / c.knn;
-      bool stuck = false;
-      const Vec3 push = c.n * dp + c.model.tangential.friction(c.tangential, u, dp, stuck);
-      c.impulse += push;
-      apply_impulse(bodies, c, push);
-    }
+    const Vec3 integrated = c.impulse;
+    apply_impulse(bodies, c, compliant_alone(c, before, min_separation) - integrated);
   }
   c.late = c.impulse * c.time;
+}
+
+// The integrated impact's impulse of a compliant contact alone (relative velocity `before` it),
+// made exact where the normal does not couple to the tangent plane (K n along n: a sphere): the
+// normal impulse that leaves at Stronge's e times the approach (or the overlap's minimum
+// separation velocity), which the tangential springs do not change, and the tangential impulse
+// scaled back if the sub-steps made it gain energy. Elsewhere an overlap left opening slower
+// than min_separation is pushed open (with the sticking law's friction, as the overlap
+// correction's). Returns the contact's impulse and keeps it in c.impulse.
+Vec3 ContactSolver::compliant_alone(Contact &c, const Vec3 &before, double min_separation) const
+{
+  const Vec3 Kn = c.K * c.n;
+  const bool decoupled = norm(Kn - c.n * c.knn) <= DECOUPLED * c.knn;
+  if (decoupled) {
+    const double un = dot(before, c.n);
+    const double target = c.model.normal.target_separation(-un, min_separation);
+    const Vec3 tangential = c.impulse - c.n * dot(c.impulse, c.n);
+    const double gain = dot(tangential, before) + 0.5 * dot(tangential, c.K * tangential);
+    const double scale =
+        gain > 0.0 ? std::clamp(-2.0 * dot(tangential, before) / dot(tangential, c.K * tangential), 0.0, 1.0) : 1.0;
+    c.impulse = c.n * (std::max(0.0, target - un) / c.knn) + tangential * scale;
+    return c.impulse;
+  }
+  const Vec3 u = relative_velocity(bodies, c);
+  const double shortfall = min_separation - dot(u, c.n);
+  if (shortfall > 0.0) {
+    const double dp = shortfall / c.knn;
+    bool stuck = false;
+    c.impulse += c.n * dp + c.model.tangential.friction(c.tangential, u, dp, stuck);
+  }
+  return c.impulse;
 }
 
 void ContactSolver::solve_isolated(const Settings &settings)

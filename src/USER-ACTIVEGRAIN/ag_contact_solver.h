@@ -101,6 +101,7 @@ class ContactSolver {
 
   Vec3 impact_alone(const Contact &c, double min_separation) const;
   void solve_alone(int c, double min_separation, const Settings &settings);
+  Vec3 compliant_alone(Contact &c, const Vec3 &before, double min_separation) const;
   void measure_approaches(const std::vector<int> &island);
   double closing_time(const Contact &c, double approach_speed, const Settings &settings) const;
 
