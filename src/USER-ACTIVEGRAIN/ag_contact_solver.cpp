@@ -157,11 +157,9 @@ Vec3 ContactSolver::compliant_alone(Contact &c, const Vec3 &before, double min_s
   if (decoupled) {
     const double un = dot(before, c.n);
     const double target = c.model.normal.target_separation(-un, min_separation);
-    const Vec3 tangential = c.impulse - c.n * dot(c.impulse, c.n);
-    const double gain = dot(tangential, before) + 0.5 * dot(tangential, c.K * tangential);
-    const double scale =
-        gain > 0.0 ? std::clamp(-2.0 * dot(tangential, before) / dot(tangential, c.K * tangential), 0.0, 1.0) : 1.0;
-    c.impulse = c.n * (std::max(0.0, target - un) / c.knn) + tangential * scale;
+    Vec3 tangential = c.impulse - c.n * dot(c.impulse, c.n);
+    cap_energy(c.K, before, tangential);
+    c.impulse = c.n * (std::max(0.0, target - un) / c.knn) + tangential;
     return c.impulse;
   }
   const Vec3 u = relative_velocity(bodies, c);

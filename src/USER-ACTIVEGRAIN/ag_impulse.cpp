@@ -32,15 +32,6 @@ constexpr double STUCK_STEP_MARGIN = 4.0;
 // that phase, up to the target.
 enum class ImpactPhase { COMPRESSION, RESTITUTION, SEPARATION };
 
-// Discretisation of the slip path must not add energy: if the impulse J of compression and
-// restitution did, scale it to the largest one that does not. (The separation phase that
-// follows adds what its target asks for: the overlap correction's energy.)
-void cap_energy(const Mat3 &K, const Vec3 &u0, Vec3 &J)
-{
-  if (impulse_energy_change(K, u0, J) <= 0.0) return;
-  J *= std::max(0.0, -2.0 * dot(J, u0) / dot(J, K * J));
-}
-
 Vec3 integrate_impact(const Mat3 &K, const Vec3 &u0, const Vec3 &n, const TangentialModel &friction,
                       double e_work, double target_separation)
 {
@@ -150,6 +141,12 @@ Mat3 contact_matrix(const RigidBodyState &body1, const Vec3 &r1, const RigidBody
 double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J)
 {
   return dot(J, u + K * J * 0.5);
+}
+
+void cap_energy(const Mat3 &K, const Vec3 &u0, Vec3 &J)
+{
+  if (impulse_energy_change(K, u0, J) <= 0.0) return;
+  J *= std::max(0.0, -2.0 * dot(J, u0) / dot(J, K * J));
 }
 
 Vec3 contact_law_impulse(const Mat3 &K, const Vec3 &u, const Vec3 &n, const ContactModel &model,

@@ -25,6 +25,11 @@ Mat3 contact_matrix(const RigidBodyState &body1, const Vec3 &r1, const RigidBody
 // relative velocity u and matrix K: J.(u + K J / 2).
 double impulse_energy_change(const Mat3 &K, const Vec3 &u, const Vec3 &J);
 
+// An integrated impulse must not add energy through its discretisation: if J does (at relative
+// velocity u0 before it), scale it to the largest multiple that does not. (The integrated
+// impact's separation phase then adds what its target asks for: the overlap correction's energy.)
+void cap_energy(const Mat3 &K, const Vec3 &u0, Vec3 &J);
+
 // The contact law on relative velocity u (body 2 minus body 1 at the contact), unit normal n from
 // body 1 to body 2. target_separation (>= 0) is the normal velocity restitution aims for:
 // e * max(0, -u.n), or an overlap's minimum separation velocity if larger. Restitution (Stronge)
